@@ -1,0 +1,101 @@
+!> Command line: contact2d DECK [-o OUT.h5] [--force] [--set group:variable=value ...]
+module contact2d_cli
+   implicit none
+   private
+   public :: cli_t, cli_parse, usage
+
+   integer, parameter :: arg_len = 4096
+
+   !> Parsed command line.
+   type :: cli_t
+      character(len=:), allocatable :: deck      !< deck path
+      character(len=:), allocatable :: output    !< output path ('' = <deck stem>.h5)
+      logical :: force = .false.                 !< overwrite an existing output file
+      logical :: help = .false.
+      logical :: version = .false.
+      logical :: quiet = .false.                 !< no deck echo
+      character(len=arg_len), allocatable :: sets(:)
+   end type cli_t
+
+   character(len=*), parameter :: usage = &
+      'usage: contact2d DECK [-o OUT.h5] [--force] [--set group:variable=value ...] [--quiet]'// &
+      new_line('a')//'       contact2d --help | --version'
+
+contains
+
+   !> Parse the command line. stat /= 0 with a message on a bad argument.
+   subroutine cli_parse(cli, stat, errmsg)
+      type(cli_t), intent(out) :: cli
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      character(len=arg_len) :: arg
+      integer :: i, n, nset
+
+      stat = 1
+      n = command_argument_count()
+      allocate (cli%sets(n))
+      cli%deck = ''
+      cli%output = ''
+      nset = 0
+      i = 1
+      do while (i <= n)
+         call get_command_argument(i, arg)
+         select case (trim(arg))
+         case ('-h', '--help')
+            cli%help = .true.
+         case ('--version')
+            cli%version = .true.
+         case ('--force')
+            cli%force = .true.
+         case ('-q', '--quiet')
+            cli%quiet = .true.
+         case ('-o', '--output')
+            if (i == n) then
+               errmsg = trim(arg)//' needs a file name'
+               return
+            end if
+            i = i + 1
+            call get_command_argument(i, arg)
+            cli%output = trim(arg)
+         case ('--set')
+            if (i == n) then
+               errmsg = '--set needs group:variable=value'
+               return
+            end if
+            i = i + 1
+            nset = nset + 1
+            call get_command_argument(i, cli%sets(nset))
+         case default
+            if (arg(1:1) == '-') then
+               errmsg = "unknown option '"//trim(arg)//"'"
+               return
+            end if
+            if (len(cli%deck) > 0) then
+               errmsg = "more than one deck given ('"//cli%deck//"' and '"//trim(arg)//"')"
+               return
+            end if
+            cli%deck = trim(arg)
+         end select
+         i = i + 1
+      end do
+      cli%sets = cli%sets(1:nset)
+      if (len(cli%deck) == 0 .and. .not. (cli%help .or. cli%version)) then
+         errmsg = 'no deck given'
+         return
+      end if
+      if (len(cli%output) == 0 .and. len(cli%deck) > 0) cli%output = stem(cli%deck)//'.h5'
+      stat = 0
+      errmsg = ''
+   end subroutine cli_parse
+
+   !> File name without directory and extension.
+   function stem(path) result(s)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: s
+      integer :: slash, dot
+      slash = index(path, '/', back=.true.)
+      s = path(slash + 1:)
+      dot = index(s, '.', back=.true.)
+      if (dot > 1) s = s(1:dot - 1)
+   end function stem
+end module contact2d_cli

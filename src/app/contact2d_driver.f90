@@ -1,0 +1,249 @@
+!> The driver: command line -> deck -> model -> time loop -> HDF5, progress and summary.
+!> Only this module stops the program (exit 1: bad input or usage, exit 2: the run failed).
+module contact2d_driver
+   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+   use contact2d_kinds, only: wp, i8
+   use contact2d_version, only: program_name, program_version
+   use contact2d_strings, only: str
+   use contact2d_cli, only: cli_t, cli_parse, usage
+   use contact2d_deck, only: deck_t, deck_read
+   use contact2d_model, only: model_t, model_build
+   use contact2d_explicit, only: explicit_t
+   use contact2d_output, only: output_t
+   implicit none
+   private
+   public :: driver_main
+
+   !> Seconds between progress-line updates.
+   real(wp), parameter :: progress_seconds = 0.5_wp
+
+contains
+
+   subroutine driver_main()
+      type(cli_t) :: cli
+      type(deck_t) :: deck
+      type(model_t) :: model
+      type(explicit_t) :: solver
+      type(output_t) :: out
+      character(len=:), allocatable :: errmsg, status
+      integer :: stat, i, nstep
+      integer(i8) :: clock0, clock1, clock_last_progress, rate, t_steps, t_output, tick
+      real(wp) :: residual, t_load_end, omega2_power, timings(4), wall, kin_ratio
+      logical :: converged, done, interactive, exists, sampled
+
+      call system_clock(clock0, rate)
+      call cli_parse(cli, stat, errmsg)
+      if (stat /= 0) call fail(1, errmsg//new_line('a')//usage)
+      if (cli%help) then
+         write (output_unit, '(a)') usage
+         write (output_unit, '(a)') 'Runs the deck and writes its HDF5 file (default: <deck stem>.h5 here).'
+         write (output_unit, '(a)') '  -o, --output FILE   output file'
+         write (output_unit, '(a)') '  --force             overwrite an existing output file'
+         write (output_unit, '(a)') '  --set G:V=X         override deck variable V of group G (G#i for the i-th'
+         write (output_unit, '(a)') '                      &dirichlet or &traction); repeatable; validated as the deck'
+         write (output_unit, '(a)') '  -q, --quiet         do not echo the effective deck'
+         write (output_unit, '(a)') 'Deck reference: docs/deck.md. Output layout: docs/output.md.'
+         stop
+      end if
+      if (cli%version) then
+         write (output_unit, '(a)') program_name//' '//program_version
+         stop
+      end if
+
+      call deck_read(cli%deck, cli%sets, deck, stat, errmsg)
+      if (stat /= 0) call fail(1, errmsg)
+      inquire (file=cli%output, exist=exists)
+      if (exists .and. .not. cli%force) then
+         call fail(1, "output file '"//cli%output//"' exists; use --force to overwrite it or -o to choose another")
+      end if
+      call model_build(deck, model, stat, errmsg)
+      if (stat /= 0) call fail(1, errmsg)
+
+      write (output_unit, '(a)') program_name//' '//program_version//': '//cli%deck//' -> '//cli%output
+      if (.not. cli%quiet) then
+         write (output_unit, '(a)') '--- effective deck ---'
+         write (output_unit, '(a)', advance='no') deck%effective
+         write (output_unit, '(a)') '----------------------'
+      end if
+      do i = 1, model%warnings%n
+         write (error_unit, '(a)') program_name//': warning: '//trim(model%warnings%items(i))
+      end do
+      write (output_unit, '(a)') 'mesh '//str(model%mesh%nx)//' x '//str(model%mesh%ny)//' = '// &
+         str(model%mesh%nel)//' Q1 elements, '//str(model%mesh%nnode)//' nodes, '// &
+         str(model%stiff%nshape)//' distinct element matrix(es)'
+      omega2_power = 0
+      if (deck%solver%power_iterations > 0) then
+         omega2_power = model%stiff%power_omega2(model%load%free, deck%solver%power_iterations)
+      end if
+      call print_time_step(model, omega2_power, deck%solver%power_iterations)
+
+      call solver%init(model%stiff, model%load, model%dt, model%damping, deck%solver%alpha, &
+                       deck%solver%damping_interval)
+      call out%open(cli%output, cli%force, deck, model, stat, errmsg)
+      if (stat /= 0) call fail(2, errmsg)
+      call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
+      if (omega2_power > 0) then
+         call out%file%attr(out%file%id, 'omega_max_power', sqrt(omega2_power))
+         call out%file%attr(out%file%id, 'dt_stable_estimate', 2/sqrt(omega2_power))
+      end if
+      call out%sample(solver, model, 0.0_wp)
+
+      call system_clock(clock1)
+      timings = 0
+      timings(1) = real(clock1 - clock0, wp)/rate
+      t_steps = 0
+      t_output = 0
+      clock_last_progress = clock1
+      interactive = deck%output%progress .and. isatty(output_unit)
+      t_load_end = model%load%end_time()
+      converged = .false.
+      done = .false.
+      status = 'not converged'
+      residual = huge(1.0_wp)
+      associate (hist => int(deck%output%history_interval, i8), check => int(deck%solver%check_interval, i8))
+         do while (.not. done)
+            nstep = int(min(hist - mod(solver%step, hist), check - mod(solver%step, check), &
+                            int(deck%solver%max_steps, i8) - solver%step))
+            call system_clock(tick)
+            call solver%advance(model%stiff, model%load, model%contact, nstep)
+            call system_clock(clock1)
+            t_steps = t_steps + (clock1 - tick)
+            sampled = .false.
+            if (solver%blown_up) then
+               status = 'blow-up'
+               done = .true.
+            else
+               if (mod(solver%step, check) == 0 .and. solver%time >= t_load_end) then
+                  residual = solver%residual(model%load)
+                  kin_ratio = merge(solver%kinetic/solver%strain, solver%kinetic, solver%strain > 0)
+                  if (residual < deck%solver%tol_residual .and. kin_ratio < deck%solver%tol_kinetic) then
+                     converged = .true.
+                     status = 'converged'
+                     done = .true.
+                  end if
+               end if
+               if (solver%time >= deck%solver%t_end*(1 - 1.0e-12_wp) .or. &
+                   solver%step >= deck%solver%max_steps) done = .true.
+            end if
+            if (mod(solver%step, hist) == 0 .or. done) then
+               call system_clock(tick)
+               residual = solver%residual(model%load)
+               call out%sample(solver, model, residual)
+               sampled = .true.
+               call system_clock(clock1)
+               t_output = t_output + (clock1 - tick)
+            end if
+            if (interactive .and. real(clock1 - clock_last_progress, wp) > progress_seconds*rate) then
+               call progress_line(solver, deck, residual, real(clock1 - clock0, wp)/rate - timings(1))
+               clock_last_progress = clock1
+            end if
+         end do
+      end associate
+      if (interactive) write (output_unit, '(a)', advance='no') achar(13)//repeat(' ', 100)//achar(13)
+
+      call system_clock(tick)
+      timings(2) = real(t_steps, wp)/rate
+      timings(3) = 0
+      call system_clock(clock1)
+      timings(4) = real(t_output + (clock1 - tick), wp)/rate
+      wall = real(clock1 - clock0, wp)/rate
+      call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
+      call system_clock(clock1)
+      timings(4) = timings(4) + real(clock1 - tick, wp)/rate - real(clock1 - tick, wp)/rate
+      if (stat /= 0) call fail(2, errmsg)
+      call summary(model, deck, solver, cli%output, converged, status, residual, wall, timings)
+      if (solver%blown_up) then
+         call fail(2, 'the run blew up at step '//str(solver%step)//' (t = '//str(solver%time)// &
+                   ' s): kinetic energy '//str(solver%kinetic)//' mJ exceeds 1000 x the work put in ('// &
+                   str(solver%work_in)//' mJ) with dt = '//fixed(model%dt/model%dt_critical, 3)// &
+                   ' dt_critical; '//cli%output//' holds the history up to the failure')
+      end if
+   end subroutine driver_main
+
+   !> One line on stderr, exit with the code.
+   subroutine fail(code, msg)
+      integer, intent(in) :: code
+      character(len=*), intent(in) :: msg
+      write (error_unit, '(a)') program_name//': error: '//msg
+      stop code, quiet=.true.
+   end subroutine fail
+
+   !> A real with a fixed number of decimals.
+   function fixed(x, decimals) result(s)
+      real(wp), intent(in) :: x
+      integer, intent(in) :: decimals
+      character(len=:), allocatable :: s
+      character(len=32) :: buf, fmt
+      write (fmt, '(a,i0,a)') '(f0.', decimals, ')'
+      write (buf, fmt) x
+      s = trim(buf)
+      if (s(1:1) == '.') s = '0'//s
+   end function fixed
+
+   !> A real in short scientific notation.
+   function sci(x) result(s)
+      real(wp), intent(in) :: x
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      write (buf, '(es10.3)') x
+      s = trim(adjustl(buf))
+   end function sci
+
+   subroutine print_time_step(model, omega2_power, iterations)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: omega2_power
+      integer, intent(in) :: iterations
+      write (output_unit, '(a)') 'dt = '//sci(model%dt)//' s = '//fixed(model%dt/model%dt_critical, 3)// &
+         ' dt_critical (element bound 2/omega_max = '//sci(model%dt_critical)//' s)'
+      if (omega2_power > 0) then
+         write (output_unit, '(a)') 'power iteration ('//str(iterations)//' its): omega_max >= '// &
+            sci(sqrt(omega2_power))//' 1/s, true stable limit <= '//sci(2/sqrt(omega2_power))//' s = '// &
+            fixed(2/sqrt(omega2_power)/model%dt_critical, 3)//' dt_critical (the element bound is conservative)'
+      end if
+   end subroutine print_time_step
+
+   subroutine progress_line(solver, deck, residual, elapsed)
+      type(explicit_t), intent(in) :: solver
+      type(deck_t), intent(in) :: deck
+      real(wp), intent(in) :: residual, elapsed
+      real(wp) :: frac, eta
+      character(len=:), allocatable :: line
+      frac = max(solver%time/deck%solver%t_end, real(solver%step, wp)/deck%solver%max_steps)
+      eta = elapsed*(1 - frac)/max(frac, 1.0e-12_wp)
+      line = 'step '//str(solver%step)//'  t = '//sci(solver%time)//' s  residual '// &
+             sci(residual)//'  ETA <= '//fixed(eta, 1)//' s   '
+      write (output_unit, '(a)', advance='no') achar(13)//line
+      flush (output_unit)
+   end subroutine progress_line
+
+   subroutine summary(model, deck, solver, path, converged, status, residual, wall, timings)
+      type(model_t), intent(in) :: model
+      type(deck_t), intent(in) :: deck
+      type(explicit_t), intent(in) :: solver
+      character(len=*), intent(in) :: path, status
+      logical, intent(in) :: converged
+      real(wp), intent(in) :: residual, wall, timings(4)
+      character(len=:), allocatable :: conv
+      real(wp) :: rate
+      associate (c => model%contact)
+         if (converged) then
+            conv = 'yes (relative residual '//sci(residual)//' < '//sci(deck%solver%tol_residual)//')'
+         else
+            conv = 'NO: '//status//' (relative residual '//sci(residual)//', tolerance '// &
+                   sci(deck%solver%tol_residual)//')'
+         end if
+         rate = real(solver%step, wp)*model%mesh%nel/max(timings(2), 1.0e-9_wp)
+         write (output_unit, '(a)') repeat('-', 72)
+         write (output_unit, '(a)') ' steps               '//str(solver%step)//'   (t = '//sci(solver%time)//' s)'
+         write (output_unit, '(a)') ' dt / dt_critical    '//fixed(model%dt/model%dt_critical, 4)
+         write (output_unit, '(a)') ' converged           '//conv
+         write (output_unit, '(a)') ' energy balance      '//sci(solver%balance_error(c%friction_dissipation, c%normal_work))// &
+            ' (relative error; W_ext = '//sci(solver%external_work)//' mJ)'
+         write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s (set-up '//fixed(timings(1), 3)// &
+            ', steps '//fixed(timings(2), 3)//', contact '//fixed(timings(3), 3)//', output '//fixed(timings(4), 3)//')'
+         write (output_unit, '(a)') ' element-steps / s   '//sci(rate)
+         write (output_unit, '(a)') ' output              '//path
+         write (output_unit, '(a)') repeat('-', 72)
+      end associate
+   end subroutine summary
+end module contact2d_driver

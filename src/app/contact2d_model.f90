@@ -1,0 +1,123 @@
+!> Deck -> model: the mesh, material, element matrices, boundary data, contact and time step
+!> built from a validated deck. Every cross-group check that needs the model lives here.
+module contact2d_model
+   use contact2d_kinds, only: wp
+   use contact2d_strings, only: str
+   use contact2d_messages, only: messages_t
+   use contact2d_deck, only: deck_t, edge_load_cfg_t, edge_id
+   use contact2d_mesh, only: mesh_t
+   use contact2d_material, only: material_t, material_init
+   use contact2d_stiffness, only: stiffness_t
+   use contact2d_loading, only: loading_t
+   use contact2d_contact, only: contact_t
+   use contact2d_explicit, only: damping_none, damping_given, damping_auto
+   implicit none
+   private
+   public :: model_t, model_build
+
+   !> Everything that does not change during a run.
+   type :: model_t
+      type(mesh_t) :: mesh
+      type(material_t) :: material
+      type(stiffness_t) :: stiff
+      type(loading_t) :: load
+      type(contact_t) :: contact
+      real(wp) :: dt = 0             !< time step [s]
+      real(wp) :: dt_critical = 0    !< 2/omega_max from the element bound [s]
+      integer :: damping = damping_auto
+      type(messages_t) :: warnings
+   end type model_t
+
+contains
+
+   !> Build the model. stat /= 0 with a one-line message naming the problem.
+   subroutine model_build(deck, model, stat, errmsg)
+      type(deck_t), intent(in) :: deck
+      type(model_t), intent(out) :: model
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: i, nx, ny
+
+      nx = deck%mesh%nx*2**deck%mesh%level
+      ny = deck%mesh%ny*2**deck%mesh%level
+      call model%mesh%init_rectangle(deck%mesh%lx, deck%mesh%ly, nx, ny)
+      call material_init(model%material, deck%material%young, deck%material%poisson, &
+                         deck%material%density, stat, errmsg)
+      if (stat /= 0) return
+      call model%stiff%init(model%mesh, model%material, stat, errmsg)
+      if (stat /= 0) return
+
+      call model%load%init(model%mesh%nnode)
+      do i = 1, size(deck%dirichlet)
+         call add_edge_load(deck%dirichlet(i), 'dirichlet', i)
+         if (stat /= 0) return
+      end do
+      do i = 1, size(deck%traction)
+         call add_edge_load(deck%traction(i), 'traction', i)
+         if (stat /= 0) return
+      end do
+      call model%load%finalize()
+
+      model%dt_critical = model%stiff%dt_critical()
+      if (deck%solver%dt > 0) then
+         model%dt = deck%solver%dt
+      else
+         model%dt = deck%solver%dt_factor*model%dt_critical
+      end if
+      if (model%dt > model%dt_critical .and. .not. deck%solver%allow_unstable) then
+         stat = 1
+         errmsg = deck%path//': solver: dt = '//str(model%dt)//' s exceeds dt_critical = '// &
+                  str(model%dt_critical)//' s (ratio '//str(real(nint(1000*model%dt/model%dt_critical), wp)/1000)// &
+                  '); set solver:allow_unstable = .true. to run anyway'
+         return
+      end if
+      if (model%dt > model%dt_critical) then
+         call model%warnings%add('dt = '//str(model%dt/model%dt_critical)//' dt_critical: '// &
+                                 'allowed by solver:allow_unstable, the run may blow up')
+      end if
+      select case (trim(deck%solver%damping))
+      case ('none'); model%damping = damping_none
+      case ('given'); model%damping = damping_given
+      case default; model%damping = damping_auto
+      end select
+      stat = 0
+      errmsg = ''
+   contains
+      subroutine add_edge_load(cfg, group, k)
+         type(edge_load_cfg_t), intent(in) :: cfg
+         character(len=*), intent(in) :: group
+         integer, intent(in) :: k
+         integer, allocatable :: nodes(:), seg(:, :)
+         integer :: id, comp, conflict
+         character(len=:), allocatable :: where
+
+         where = deck%path//':'//str(cfg%line)//': &'//group//' (#'//str(k)//'): '
+         call model%mesh%select_nodes(edge_id(cfg%edge), [cfg%xmin, cfg%xmax, cfg%ymin, cfg%ymax], nodes)
+         if (size(nodes) == 0) then
+            stat = 1
+            errmsg = where//"the selection (edge = '"//trim(cfg%edge)//"' and its range) holds no node"
+            return
+         end if
+         comp = merge(1, 2, cfg%component == 'x')
+         id = model%load%add_curve(cfg%times(1:cfg%nstage), cfg%values(1:cfg%nstage))
+         if (group == 'dirichlet') then
+            call model%load%prescribe(nodes, comp, id, conflict)
+            if (conflict /= 0) then
+               stat = 1
+               errmsg = where//'node '//str(conflict)//' ('//str(model%mesh%x(1, conflict))//', '// &
+                        str(model%mesh%x(2, conflict))//') component '//trim(cfg%component)// &
+                        ' is already prescribed with another load curve'
+               return
+            end if
+         else
+            call model%mesh%select_segments(nodes, seg)
+            if (size(seg, 2) == 0) then
+               stat = 1
+               errmsg = where//'the selection holds no element edge (a single node cannot carry a traction)'
+               return
+            end if
+            call model%load%add_traction(model%mesh%x, seg, comp, id)
+         end if
+      end subroutine add_edge_load
+   end subroutine model_build
+end module contact2d_model

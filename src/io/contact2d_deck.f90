@@ -1,0 +1,1037 @@
+!> The input deck: Fortran namelist groups, their defaults (here and nowhere else), command-line
+!> overrides, validation and the echo of the effective values (docs/deck.md documents every
+!> variable).
+!>
+!> A deck is a text file of namelist groups. Text outside groups must be blank or a `!` comment.
+!> Groups: &mesh, &material, &solver, &output and &contact once each, &dirichlet and &traction as
+!> many times as needed. Each group is read from its own block with iostat/iomsg; a failure
+!> names the deck line of the group and the runtime's message.
+module contact2d_deck
+   use contact2d_kinds, only: wp
+   use contact2d_strings, only: str, lower, join
+   use contact2d_material, only: material_t, material_init
+   implicit none
+   private
+   public :: deck_t, deck_read, mesh_cfg_t, material_cfg_t, edge_load_cfg_t, contact_cfg_t
+   public :: solver_cfg_t, output_cfg_t, unset, max_stages, max_points, edge_id, group_names
+
+   !> Marks a real variable the deck did not set.
+   real(wp), parameter :: unset = huge(1.0_wp)
+   !> Marks an integer variable the deck did not set.
+   integer, parameter :: unset_int = -huge(1)
+   !> Most stages of a load curve and most points of a threshold profile.
+   integer, parameter :: max_stages = 16, max_points = 64
+   !> Longest accepted deck line.
+   integer, parameter :: line_len = 1024
+
+   character(len=9), parameter :: group_names(7) = [character(len=9) :: &
+                                                    'mesh', 'material', 'dirichlet', 'traction', 'contact', 'solver', 'output']
+   character(len=6), parameter :: edges(4) = [character(len=6) :: 'bottom', 'right', 'top', 'left']
+
+   !> &mesh: structured rectangle [0, lx] x [0, ly] with (nx 2^level) x (ny 2^level) elements.
+   type :: mesh_cfg_t
+      real(wp) :: lx = unset          !< width [mm], required, > 0
+      real(wp) :: ly = unset          !< height [mm], required, > 0
+      integer :: nx = unset_int       !< divisions along x at level 0, required, >= 1
+      integer :: ny = unset_int       !< divisions along y at level 0, required, >= 1
+      integer :: level = 0            !< refinement level k: each division split in 2^k, 0..12
+   end type mesh_cfg_t
+
+   !> &material: isotropic Hooke law, plane strain.
+   type :: material_cfg_t
+      real(wp) :: young = unset       !< E [MPa], required, > 0
+      real(wp) :: poisson = unset     !< nu [-], required, -1 < nu < 0.5
+      real(wp) :: density = unset     !< rho [t/mm^3], required, > 0
+   end type material_cfg_t
+
+   !> &dirichlet (prescribed displacement [mm]) or &traction (surface traction [MPa]) on the
+   !> nodes of one side of the bounding box within an optional coordinate range.
+   type :: edge_load_cfg_t
+      character(len=16) :: edge = ''               !< 'bottom' | 'right' | 'top' | 'left', required
+      real(wp) :: xmin = -unset, xmax = unset      !< x range of the selection [mm]
+      real(wp) :: ymin = -unset, ymax = unset      !< y range of the selection [mm]
+      character(len=8) :: component = ''           !< 'x' | 'y', required
+      real(wp) :: values(max_stages) = unset       !< value at the end of each stage, required
+      real(wp) :: times(max_stages) = unset        !< end time of each stage [s]
+      integer :: nstage = 0                        !< derived: number of stages
+      integer :: line = 0                          !< deck line of the group (for messages)
+   end type edge_load_cfg_t
+
+   !> &contact: a candidate boundary against a rigid straight obstacle (SPEC section 3).
+   type :: contact_cfg_t
+      logical :: present = .false.                 !< derived: the deck has a &contact group
+      character(len=16) :: edge = ''               !< candidate side, required
+      real(wp) :: xmin = -unset, xmax = unset      !< x range of the candidate boundary [mm]
+      real(wp) :: ymin = -unset, ymax = unset      !< y range of the candidate boundary [mm]
+      real(wp) :: obstacle_point(2) = [0.0_wp, 0.0_wp]   !< a point P of the obstacle line [mm]
+      real(wp) :: obstacle_normal(2) = [0.0_wp, 1.0_wp]  !< unit normal nu, obstacle -> body
+      real(wp) :: origin(2) = [unset, unset]       !< point O of the abscissa; default: first node
+      character(len=4) :: direction = 'ccw'        !< abscissa runs 'ccw' or 'cw' along the boundary
+      character(len=4) :: multiplier = 'P1'        !< 'P1' | 'P0'
+      character(len=16) :: friction = 'frictionless'  !< 'frictionless' | 'tresca'
+      real(wp) :: threshold = 0                    !< uniform Tresca threshold s [MPa], >= 0
+      real(wp) :: threshold_abscissa(max_points) = unset  !< abscissae of a piecewise-linear s [mm]
+      real(wp) :: threshold_values(max_points) = unset    !< s at those abscissae [MPa]
+      integer :: npoints = 0                       !< derived: points of the s profile (0: uniform)
+      character(len=8) :: tresca_scope = 'all'     !< 'all' (as in the paper) | 'contact'
+      character(len=8) :: method = 'lagrange'      !< 'lagrange' | 'penalty'
+      real(wp) :: penalty_stiffness = 0            !< k_p per unit length [MPa/mm], method='penalty'
+   end type contact_cfg_t
+
+   !> &solver: time step, load ramp, damping and convergence.
+   type :: solver_cfg_t
+      real(wp) :: dt = 0                  !< time step [s]; 0: dt_factor * dt_critical
+      real(wp) :: dt_factor = 0.9_wp      !< dt / dt_critical when dt = 0, > 0
+      logical :: allow_unstable = .false. !< accept dt > dt_critical (stability studies)
+      real(wp) :: t_ramp = unset          !< duration of a one-stage load without its own times [s]
+      real(wp) :: t_end = 0               !< end time [s]; 0: 10 x the end of the last stage
+      integer :: max_steps = 10000000     !< step limit, >= 1
+      character(len=8) :: damping = 'auto'  !< 'auto' | 'given' | 'none'
+      real(wp) :: alpha = 0               !< mass-proportional damping for 'given' [1/s], >= 0
+      integer :: damping_interval = 20    !< steps between estimates of omega_1 ('auto')
+      real(wp) :: tol_residual = 1.0e-8_wp  !< relative out-of-balance force at convergence
+      real(wp) :: tol_kinetic = 1.0e-12_wp  !< kinetic / strain energy at convergence
+      integer :: check_interval = 10      !< steps between convergence checks
+      integer :: power_iterations = 100   !< power iterations for the true omega_max (0: skip)
+   end type solver_cfg_t
+
+   !> &output: what is written and how often.
+   type :: output_cfg_t
+      integer :: history_interval = 10    !< steps between history samples, >= 1
+      logical :: xdmf = .true.            !< write the XDMF sidecar <output>.xmf for ParaView
+      logical :: progress = .true.        !< progress line when the terminal is interactive
+   end type output_cfg_t
+
+   !> A whole deck after overrides and validation.
+   type :: deck_t
+      character(len=:), allocatable :: path        !< deck file as given
+      character(len=:), allocatable :: text        !< deck file contents
+      character(len=:), allocatable :: effective   !< echo of the effective values (a valid deck)
+      type(mesh_cfg_t) :: mesh
+      type(material_cfg_t) :: material
+      type(edge_load_cfg_t), allocatable :: dirichlet(:)
+      type(edge_load_cfg_t), allocatable :: traction(:)
+      type(contact_cfg_t) :: contact
+      type(solver_cfg_t) :: solver
+      type(output_cfg_t) :: output
+   end type deck_t
+
+   !> One group occurrence in the deck: its name, first and last line.
+   type :: block_t
+      character(len=16) :: name = ''
+      integer :: first = 0, last = 0
+   end type block_t
+
+   !> One --set override: group, 1-based occurrence (0: not given) and the assignment text.
+   type :: override_t
+      character(len=16) :: group = ''
+      integer :: index = 0
+      character(len=:), allocatable :: assignment
+      character(len=:), allocatable :: spec
+   end type override_t
+
+contains
+
+   !> Side id 1..4 of an edge name, 0 if unknown.
+   pure integer function edge_id(name)
+      character(len=*), intent(in) :: name
+      integer :: i
+      edge_id = 0
+      do i = 1, size(edges)
+         if (lower(trim(name)) == trim(edges(i))) edge_id = i
+      end do
+   end function edge_id
+
+   !> Read, override and validate a deck. overrides are 'group[#i]:variable=value' strings.
+   subroutine deck_read(path, overrides, deck, stat, errmsg)
+      character(len=*), intent(in) :: path
+      character(len=*), intent(in) :: overrides(:)
+      type(deck_t), intent(out) :: deck
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      character(len=line_len), allocatable :: lines(:)
+      type(block_t), allocatable :: blocks(:)
+      type(override_t), allocatable :: ovr(:)
+
+      deck%path = path
+      call read_lines(path, lines, deck%text, stat, errmsg)
+      if (stat /= 0) return
+      call split_blocks(lines, blocks, stat, errmsg)
+      if (stat /= 0) then
+         errmsg = path//':'//errmsg
+         return
+      end if
+      call parse_overrides(overrides, blocks, ovr, stat, errmsg)
+      if (stat /= 0) return
+      call read_groups(path, lines, blocks, ovr, deck, stat, errmsg)
+      if (stat /= 0) return
+      call validate(deck, stat, errmsg)
+      if (stat /= 0) then
+         errmsg = path//': '//errmsg
+         return
+      end if
+      deck%effective = echo(deck)
+   end subroutine deck_read
+
+   ! ---- reading ----------------------------------------------------------------------------
+
+   subroutine read_lines(path, lines, text, stat, errmsg)
+      character(len=*), intent(in) :: path
+      character(len=line_len), allocatable, intent(out) :: lines(:)
+      character(len=:), allocatable, intent(out) :: text
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      character(len=line_len + 1) :: buf
+      character(len=256) :: msg
+      character(len=line_len), allocatable :: tmp(:)
+      integer :: unit, n, ios
+      logical :: exists
+
+      inquire (file=path, exist=exists)
+      if (.not. exists) then
+         stat = 1
+         errmsg = "cannot open deck '"//path//"': no such file"
+         return
+      end if
+      open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         stat = 1
+         errmsg = "cannot open deck '"//path//"': "//trim(msg)
+         return
+      end if
+      allocate (lines(64))
+      text = ''
+      n = 0
+      do
+         read (unit, '(a)', iostat=ios, iomsg=msg) buf
+         if (is_iostat_end(ios)) exit
+         if (ios /= 0) then
+            stat = 1
+            errmsg = path//':'//str(n + 1)//': cannot read: '//trim(msg)
+            close (unit)
+            return
+         end if
+         n = n + 1
+         if (len_trim(buf) > line_len) then
+            stat = 1
+            errmsg = path//':'//str(n)//': line longer than '//str(line_len)//' characters'
+            close (unit)
+            return
+         end if
+         if (n > size(lines)) then
+            allocate (tmp(2*size(lines)))
+            tmp(1:size(lines)) = lines
+            call move_alloc(tmp, lines)
+         end if
+         lines(n) = buf(1:line_len)
+         text = text//trim(buf)//new_line('a')
+      end do
+      close (unit)
+      lines = lines(1:n)
+      stat = 0
+      errmsg = ''
+   end subroutine read_lines
+
+   !> Find the groups: '&name' opens one (first non-blank of a line), the first '/' outside
+   !> quotes and comments closes it. Anything else outside groups must be blank or a comment.
+   subroutine split_blocks(lines, blocks, stat, errmsg)
+      character(len=line_len), intent(in) :: lines(:)
+      type(block_t), allocatable, intent(out) :: blocks(:)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      type(block_t) :: tmp(size(lines))
+      logical :: inside
+      character(len=1) :: quote, c
+      integer :: i, k, n, j, first
+      character(len=:), allocatable :: name
+
+      stat = 0
+      errmsg = ''
+      n = 0
+      inside = .false.
+      do i = 1, size(lines)
+         quote = ' '
+         k = 1
+         if (.not. inside) then
+            first = verify(lines(i), ' '//achar(9))
+            if (first == 0) cycle
+            if (lines(i)(first:first) == '!') cycle
+            if (lines(i)(first:first) /= '&') then
+               stat = 1
+               errmsg = str(i)//': text outside any namelist group: '//trim(adjustl(lines(i)))
+               return
+            end if
+            j = first + 1
+            do while (j <= len_trim(lines(i)))
+               c = lines(i)(j:j)
+               if (.not. (is_name_char(c))) exit
+               j = j + 1
+            end do
+            name = lower(lines(i)(first + 1:j - 1))
+            if (.not. any(group_names == name)) then
+               stat = 1
+               errmsg = str(i)//": unknown group '&"//name//"'; valid groups: "// &
+                        join(group_names, ', ')
+               return
+            end if
+            n = n + 1
+            tmp(n)%name = name
+            tmp(n)%first = i
+            inside = .true.
+            k = j
+         end if
+         ! look for the closing slash
+         do j = k, len_trim(lines(i))
+            c = lines(i)(j:j)
+            if (quote /= ' ') then
+               if (c == quote) quote = ' '
+            else if (c == "'" .or. c == '"') then
+               quote = c
+            else if (c == '!') then
+               exit
+            else if (c == '/') then
+               inside = .false.
+               tmp(n)%last = i
+               exit
+            end if
+         end do
+         if (.not. inside) then
+            ! nothing but a comment may follow the slash
+            first = verify(lines(i)(j + 1:), ' '//achar(9))
+            if (first > 0) then
+               if (lines(i)(j + first:j + first) /= '!') then
+                  stat = 1
+                  errmsg = str(i)//': text after the end of group &'//trim(tmp(n)%name)
+                  return
+               end if
+            end if
+         end if
+      end do
+      if (inside) then
+         stat = 1
+         errmsg = str(tmp(n)%first)//': group &'//trim(tmp(n)%name)//" is not closed by '/'"
+         return
+      end if
+      blocks = tmp(1:n)
+      do i = 1, n
+         if (trim(blocks(i)%name) == 'dirichlet' .or. trim(blocks(i)%name) == 'traction') cycle
+         do j = 1, i - 1
+            if (blocks(j)%name == blocks(i)%name) then
+               stat = 1
+               errmsg = str(blocks(i)%first)//': group &'//trim(blocks(i)%name)// &
+                        ' given twice (first at line '//str(blocks(j)%first)//')'
+               return
+            end if
+         end do
+      end do
+   contains
+      pure logical function is_name_char(ch)
+         character(len=1), intent(in) :: ch
+         is_name_char = verify(ch, 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_') == 0
+      end function is_name_char
+   end subroutine split_blocks
+
+   !> Parse 'group[#i]:assignment' strings.
+   subroutine parse_overrides(specs, blocks, ovr, stat, errmsg)
+      character(len=*), intent(in) :: specs(:)
+      type(block_t), intent(in) :: blocks(:)
+      type(override_t), allocatable, intent(out) :: ovr(:)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: i, colon, hash, ios, nocc
+      character(len=:), allocatable :: spec, group
+
+      allocate (ovr(size(specs)))
+      stat = 1
+      do i = 1, size(specs)
+         spec = trim(adjustl(specs(i)))
+         ovr(i)%spec = spec
+         colon = index(spec, ':')
+         if (colon < 2 .or. index(spec, '=') < colon + 2) then
+            errmsg = "--set '"//spec//"': expected group:variable=value"
+            return
+         end if
+         group = lower(spec(1:colon - 1))
+         hash = index(group, '#')
+         if (hash > 0) then
+            read (group(hash + 1:), *, iostat=ios) ovr(i)%index
+            if (ios /= 0 .or. ovr(i)%index < 1) then
+               errmsg = "--set '"//spec//"': bad group index '"//group(hash + 1:)//"'"
+               return
+            end if
+            group = group(1:hash - 1)
+         end if
+         if (.not. any(group_names == group)) then
+            errmsg = "--set '"//spec//"': unknown group '"//group//"'; valid groups: "// &
+                     join(group_names, ', ')
+            return
+         end if
+         ovr(i)%group = group
+         ovr(i)%assignment = spec(colon + 1:)
+         if (group == 'dirichlet' .or. group == 'traction') then
+            nocc = count(blocks%name == group)
+            if (nocc == 0) then
+               errmsg = "--set '"//spec//"': the deck has no &"//group//' group'
+               return
+            end if
+            if (ovr(i)%index == 0 .and. nocc > 1) then
+               errmsg = "--set '"//spec//"': the deck has "//str(nocc)//' &'//group// &
+                        ' groups; say which, e.g. '//group//'#2:...'
+               return
+            end if
+            if (ovr(i)%index > nocc) then
+               errmsg = "--set '"//spec//"': the deck has only "//str(nocc)//' &'//group//' groups'
+               return
+            end if
+            ovr(i)%index = max(ovr(i)%index, 1)
+         else if (ovr(i)%index > 1) then
+            errmsg = "--set '"//spec//"': &"//group//' occurs once'
+            return
+         end if
+      end do
+      stat = 0
+      errmsg = ''
+   end subroutine parse_overrides
+
+   !> Read every group (defaults first, then the deck block, then the overrides).
+   subroutine read_groups(path, lines, blocks, ovr, deck, stat, errmsg)
+      character(len=*), intent(in) :: path
+      character(len=line_len), intent(in) :: lines(:)
+      type(block_t), intent(in) :: blocks(:)
+      type(override_t), intent(in) :: ovr(:)
+      type(deck_t), intent(inout) :: deck
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      character(len=line_len) :: none(0)
+      integer :: b, nd, nt, k
+      character(len=:), allocatable :: where
+
+      stat = 0
+      errmsg = ''
+      allocate (deck%dirichlet(count(blocks%name == 'dirichlet')))
+      allocate (deck%traction(count(blocks%name == 'traction')))
+      nd = 0
+      nt = 0
+      ! singletons absent from the deck keep their defaults but still take their overrides
+      do k = 1, size(group_names)
+         if (any(blocks%name == group_names(k))) cycle
+         where = path//': &'//trim(group_names(k))//': '
+         select case (trim(group_names(k)))
+         case ('mesh'); call read_mesh(none, pick(ovr, 'mesh', 1), where, deck%mesh, stat, errmsg)
+         case ('material'); call read_material(none, pick(ovr, 'material', 1), where, deck%material, stat, errmsg)
+         case ('solver'); call read_solver(none, pick(ovr, 'solver', 1), where, deck%solver, stat, errmsg)
+         case ('output'); call read_output(none, pick(ovr, 'output', 1), where, deck%output, stat, errmsg)
+         case ('contact')
+            if (any(ovr%group == 'contact')) then
+               stat = 1
+               errmsg = '--set on &contact, but the deck has no &contact group'
+            end if
+         end select
+         if (stat /= 0) return
+      end do
+      do b = 1, size(blocks)
+         where = path//':'//str(blocks(b)%first)//': &'//trim(blocks(b)%name)//': '
+         associate (blk => lines(blocks(b)%first:blocks(b)%last))
+            select case (trim(blocks(b)%name))
+            case ('mesh'); call read_mesh(blk, pick(ovr, 'mesh', 1), where, deck%mesh, stat, errmsg)
+            case ('material'); call read_material(blk, pick(ovr, 'material', 1), where, deck%material, stat, errmsg)
+            case ('solver'); call read_solver(blk, pick(ovr, 'solver', 1), where, deck%solver, stat, errmsg)
+            case ('output'); call read_output(blk, pick(ovr, 'output', 1), where, deck%output, stat, errmsg)
+            case ('contact')
+               deck%contact%present = .true.
+               call read_contact(blk, pick(ovr, 'contact', 1), where, deck%contact, stat, errmsg)
+            case ('dirichlet')
+               nd = nd + 1
+               deck%dirichlet(nd)%line = blocks(b)%first
+               call read_edge_load(blk, 'dirichlet', pick(ovr, 'dirichlet', nd), where, deck%dirichlet(nd), stat, errmsg)
+            case ('traction')
+               nt = nt + 1
+               deck%traction(nt)%line = blocks(b)%first
+               call read_edge_load(blk, 'traction', pick(ovr, 'traction', nt), where, deck%traction(nt), stat, errmsg)
+            end select
+         end associate
+         if (stat /= 0) return
+      end do
+   end subroutine read_groups
+
+   !> The overrides of one group occurrence, each made a one-line namelist record.
+   function pick(ovr, group, occurrence) result(sel)
+      type(override_t), intent(in) :: ovr(:)
+      character(len=*), intent(in) :: group
+      integer, intent(in) :: occurrence
+      type(override_t), allocatable :: sel(:)
+      integer :: i
+      allocate (sel(0))
+      do i = 1, size(ovr)
+         if (trim(ovr(i)%group) /= group) cycle
+         if (max(ovr(i)%index, 1) /= occurrence) cycle
+         sel = [sel, ovr(i)]
+         sel(size(sel))%assignment = '&'//group//' '//ovr(i)%assignment//' /'
+      end do
+   end function pick
+
+   !> Turn a failed namelist read into a message; true if it failed.
+   logical function read_failed(ios, msg, where, stat, errmsg)
+      integer, intent(in) :: ios
+      character(len=*), intent(in) :: msg, where
+      integer, intent(inout) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      read_failed = ios /= 0
+      if (read_failed) then
+         stat = 1
+         errmsg = where//trim(msg)
+      end if
+   end function read_failed
+
+   subroutine read_mesh(blk, ovr, where, cfg, stat, errmsg)
+      character(len=line_len), intent(in) :: blk(:)
+      type(override_t), intent(in) :: ovr(:)
+      character(len=*), intent(in) :: where
+      type(mesh_cfg_t), intent(inout) :: cfg
+      integer, intent(inout) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      real(wp) :: lx, ly
+      integer :: nx, ny, level, ios, i
+      character(len=256) :: msg
+      namelist /mesh/ lx, ly, nx, ny, level
+      lx = cfg%lx; ly = cfg%ly; nx = cfg%nx; ny = cfg%ny; level = cfg%level
+      if (size(blk) > 0) then
+         read (blk, nml=mesh, iostat=ios, iomsg=msg)
+         if (read_failed(ios, msg, where, stat, errmsg)) return
+      end if
+      do i = 1, size(ovr)
+         read (ovr(i)%assignment, nml=mesh, iostat=ios, iomsg=msg)
+         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+      end do
+      cfg%lx = lx; cfg%ly = ly; cfg%nx = nx; cfg%ny = ny; cfg%level = level
+   end subroutine read_mesh
+
+   subroutine read_material(blk, ovr, where, cfg, stat, errmsg)
+      character(len=line_len), intent(in) :: blk(:)
+      type(override_t), intent(in) :: ovr(:)
+      character(len=*), intent(in) :: where
+      type(material_cfg_t), intent(inout) :: cfg
+      integer, intent(inout) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      real(wp) :: young, poisson, density
+      integer :: ios, i
+      character(len=256) :: msg
+      namelist /material/ young, poisson, density
+      young = cfg%young; poisson = cfg%poisson; density = cfg%density
+      if (size(blk) > 0) then
+         read (blk, nml=material, iostat=ios, iomsg=msg)
+         if (read_failed(ios, msg, where, stat, errmsg)) return
+      end if
+      do i = 1, size(ovr)
+         read (ovr(i)%assignment, nml=material, iostat=ios, iomsg=msg)
+         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+      end do
+      cfg%young = young; cfg%poisson = poisson; cfg%density = density
+   end subroutine read_material
+
+   subroutine read_edge_load(blk, group, ovr, where, cfg, stat, errmsg)
+      character(len=line_len), intent(in) :: blk(:)
+      character(len=*), intent(in) :: group
+      type(override_t), intent(in) :: ovr(:)
+      character(len=*), intent(in) :: where
+      type(edge_load_cfg_t), intent(inout) :: cfg
+      integer, intent(inout) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      character(len=16) :: edge
+      character(len=8) :: component
+      real(wp) :: xmin, xmax, ymin, ymax, values(max_stages), times(max_stages)
+      integer :: ios, i
+      character(len=256) :: msg
+      namelist /dirichlet/ edge, xmin, xmax, ymin, ymax, component, values, times
+      namelist /traction/ edge, xmin, xmax, ymin, ymax, component, values, times
+      edge = cfg%edge; component = cfg%component
+      xmin = cfg%xmin; xmax = cfg%xmax; ymin = cfg%ymin; ymax = cfg%ymax
+      values = cfg%values; times = cfg%times
+      if (group == 'dirichlet') then
+         read (blk, nml=dirichlet, iostat=ios, iomsg=msg)
+      else
+         read (blk, nml=traction, iostat=ios, iomsg=msg)
+      end if
+      if (read_failed(ios, msg, where, stat, errmsg)) return
+      do i = 1, size(ovr)
+         if (group == 'dirichlet') then
+            read (ovr(i)%assignment, nml=dirichlet, iostat=ios, iomsg=msg)
+         else
+            read (ovr(i)%assignment, nml=traction, iostat=ios, iomsg=msg)
+         end if
+         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+      end do
+      cfg%edge = edge; cfg%component = component
+      cfg%xmin = xmin; cfg%xmax = xmax; cfg%ymin = ymin; cfg%ymax = ymax
+      cfg%values = values; cfg%times = times
+   end subroutine read_edge_load
+
+   subroutine read_contact(blk, ovr, where, cfg, stat, errmsg)
+      character(len=line_len), intent(in) :: blk(:)
+      type(override_t), intent(in) :: ovr(:)
+      character(len=*), intent(in) :: where
+      type(contact_cfg_t), intent(inout) :: cfg
+      integer, intent(inout) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      character(len=16) :: edge, friction
+      character(len=4) :: direction, multiplier
+      character(len=8) :: tresca_scope, method
+      real(wp) :: xmin, xmax, ymin, ymax, obstacle_point(2), obstacle_normal(2), origin(2)
+      real(wp) :: threshold, threshold_abscissa(max_points), threshold_values(max_points)
+      real(wp) :: penalty_stiffness
+      integer :: ios, i
+      character(len=256) :: msg
+      namelist /contact/ edge, xmin, xmax, ymin, ymax, obstacle_point, obstacle_normal, origin, &
+         direction, multiplier, friction, threshold, threshold_abscissa, threshold_values, &
+         tresca_scope, method, penalty_stiffness
+      edge = cfg%edge; xmin = cfg%xmin; xmax = cfg%xmax; ymin = cfg%ymin; ymax = cfg%ymax
+      obstacle_point = cfg%obstacle_point; obstacle_normal = cfg%obstacle_normal
+      origin = cfg%origin; direction = cfg%direction; multiplier = cfg%multiplier
+      friction = cfg%friction; threshold = cfg%threshold
+      threshold_abscissa = cfg%threshold_abscissa; threshold_values = cfg%threshold_values
+      tresca_scope = cfg%tresca_scope; method = cfg%method
+      penalty_stiffness = cfg%penalty_stiffness
+      read (blk, nml=contact, iostat=ios, iomsg=msg)
+      if (read_failed(ios, msg, where, stat, errmsg)) return
+      do i = 1, size(ovr)
+         read (ovr(i)%assignment, nml=contact, iostat=ios, iomsg=msg)
+         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+      end do
+      cfg%edge = edge; cfg%xmin = xmin; cfg%xmax = xmax; cfg%ymin = ymin; cfg%ymax = ymax
+      cfg%obstacle_point = obstacle_point; cfg%obstacle_normal = obstacle_normal
+      cfg%origin = origin; cfg%direction = direction; cfg%multiplier = multiplier
+      cfg%friction = friction; cfg%threshold = threshold
+      cfg%threshold_abscissa = threshold_abscissa; cfg%threshold_values = threshold_values
+      cfg%tresca_scope = tresca_scope; cfg%method = method
+      cfg%penalty_stiffness = penalty_stiffness
+   end subroutine read_contact
+
+   subroutine read_solver(blk, ovr, where, cfg, stat, errmsg)
+      character(len=line_len), intent(in) :: blk(:)
+      type(override_t), intent(in) :: ovr(:)
+      character(len=*), intent(in) :: where
+      type(solver_cfg_t), intent(inout) :: cfg
+      integer, intent(inout) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      real(wp) :: dt, dt_factor, t_ramp, t_end, alpha, tol_residual, tol_kinetic
+      logical :: allow_unstable
+      integer :: max_steps, damping_interval, check_interval, power_iterations, ios, i
+      character(len=8) :: damping
+      character(len=256) :: msg
+      namelist /solver/ dt, dt_factor, allow_unstable, t_ramp, t_end, max_steps, damping, &
+         alpha, damping_interval, tol_residual, tol_kinetic, check_interval, power_iterations
+      dt = cfg%dt; dt_factor = cfg%dt_factor; allow_unstable = cfg%allow_unstable
+      t_ramp = cfg%t_ramp; t_end = cfg%t_end; max_steps = cfg%max_steps
+      damping = cfg%damping; alpha = cfg%alpha; damping_interval = cfg%damping_interval
+      tol_residual = cfg%tol_residual; tol_kinetic = cfg%tol_kinetic
+      check_interval = cfg%check_interval; power_iterations = cfg%power_iterations
+      if (size(blk) > 0) then
+         read (blk, nml=solver, iostat=ios, iomsg=msg)
+         if (read_failed(ios, msg, where, stat, errmsg)) return
+      end if
+      do i = 1, size(ovr)
+         read (ovr(i)%assignment, nml=solver, iostat=ios, iomsg=msg)
+         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+      end do
+      cfg%dt = dt; cfg%dt_factor = dt_factor; cfg%allow_unstable = allow_unstable
+      cfg%t_ramp = t_ramp; cfg%t_end = t_end; cfg%max_steps = max_steps
+      cfg%damping = damping; cfg%alpha = alpha; cfg%damping_interval = damping_interval
+      cfg%tol_residual = tol_residual; cfg%tol_kinetic = tol_kinetic
+      cfg%check_interval = check_interval; cfg%power_iterations = power_iterations
+   end subroutine read_solver
+
+   subroutine read_output(blk, ovr, where, cfg, stat, errmsg)
+      character(len=line_len), intent(in) :: blk(:)
+      type(override_t), intent(in) :: ovr(:)
+      character(len=*), intent(in) :: where
+      type(output_cfg_t), intent(inout) :: cfg
+      integer, intent(inout) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      integer :: history_interval, ios, i
+      logical :: xdmf, progress
+      character(len=256) :: msg
+      namelist /output/ history_interval, xdmf, progress
+      history_interval = cfg%history_interval; xdmf = cfg%xdmf; progress = cfg%progress
+      if (size(blk) > 0) then
+         read (blk, nml=output, iostat=ios, iomsg=msg)
+         if (read_failed(ios, msg, where, stat, errmsg)) return
+      end if
+      do i = 1, size(ovr)
+         read (ovr(i)%assignment, nml=output, iostat=ios, iomsg=msg)
+         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+      end do
+      cfg%history_interval = history_interval; cfg%xdmf = xdmf; cfg%progress = progress
+   end subroutine read_output
+
+   ! ---- validation -------------------------------------------------------------------------
+
+   !> Check every value right after reading; fill derived values (stage counts, default times).
+   subroutine validate(deck, stat, errmsg)
+      type(deck_t), intent(inout) :: deck
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      type(material_t) :: mat
+      real(wp) :: last_stage, norm
+      integer :: i
+
+      stat = 1
+      associate (m => deck%mesh)
+         if (m%lx == unset) then; errmsg = 'mesh:lx is required (width, mm)'; return; end if
+         if (m%ly == unset) then; errmsg = 'mesh:ly is required (height, mm)'; return; end if
+         if (m%nx == unset_int) then; errmsg = 'mesh:nx is required (divisions along x)'; return; end if
+         if (m%ny == unset_int) then; errmsg = 'mesh:ny is required (divisions along y)'; return; end if
+         if (.not. m%lx > 0) then; errmsg = 'mesh:lx = '//str(m%lx)//' must be > 0'; return; end if
+         if (.not. m%ly > 0) then; errmsg = 'mesh:ly = '//str(m%ly)//' must be > 0'; return; end if
+         if (m%nx < 1) then; errmsg = 'mesh:nx = '//str(m%nx)//' must be >= 1'; return; end if
+         if (m%ny < 1) then; errmsg = 'mesh:ny = '//str(m%ny)//' must be >= 1'; return; end if
+         if (m%level < 0 .or. m%level > 12) then
+            errmsg = 'mesh:level = '//str(m%level)//' must be in 0..12'
+            return
+         end if
+         if (real(m%nx, wp)*real(m%ny, wp)*4.0_wp**m%level > 5.0e7_wp) then
+            errmsg = 'mesh: nx*ny*4**level = '//str(real(m%nx, wp)*real(m%ny, wp)*4.0_wp**m%level)// &
+                     ' elements is more than this program is meant for (5e7)'
+            return
+         end if
+      end associate
+
+      associate (m => deck%material)
+         if (m%young == unset) then; errmsg = 'material:young is required (MPa)'; return; end if
+         if (m%poisson == unset) then; errmsg = 'material:poisson is required'; return; end if
+         if (m%density == unset) then; errmsg = 'material:density is required (t/mm^3)'; return; end if
+         call material_init(mat, m%young, m%poisson, m%density, stat, errmsg)
+         if (stat /= 0) return
+         stat = 1
+      end associate
+
+      associate (s => deck%solver)
+         if (.not. s%dt >= 0) then; errmsg = 'solver:dt = '//str(s%dt)//' must be >= 0 (0: automatic)'; return; end if
+         if (.not. s%dt_factor > 0) then
+            errmsg = 'solver:dt_factor = '//str(s%dt_factor)//' must be > 0'
+            return
+         end if
+         if (s%t_ramp /= unset .and. .not. s%t_ramp > 0) then
+            errmsg = 'solver:t_ramp = '//str(s%t_ramp)//' must be > 0'
+            return
+         end if
+         if (.not. s%t_end >= 0) then; errmsg = 'solver:t_end = '//str(s%t_end)//' must be >= 0'; return; end if
+         if (s%max_steps < 1) then; errmsg = 'solver:max_steps = '//str(s%max_steps)//' must be >= 1'; return; end if
+         s%damping = lower(s%damping)
+         if (.not. any(s%damping == [character(len=8) :: 'auto', 'given', 'none'])) then
+            errmsg = "solver:damping = '"//trim(s%damping)//"' is not one of 'auto', 'given', 'none'"
+            return
+         end if
+         if (.not. s%alpha >= 0) then; errmsg = 'solver:alpha = '//str(s%alpha)//' must be >= 0'; return; end if
+         if (s%damping == 'given' .and. s%alpha == 0) then
+            errmsg = "solver:damping = 'given' needs solver:alpha > 0 (1/s); use 'none' for no damping"
+            return
+         end if
+         if (s%damping /= 'given' .and. s%alpha /= 0) then
+            errmsg = "solver:alpha is set but solver:damping = '"//trim(s%damping)//"' ignores it; "// &
+                     "use damping = 'given'"
+            return
+         end if
+         if (s%damping_interval < 1) then
+            errmsg = 'solver:damping_interval = '//str(s%damping_interval)//' must be >= 1'
+            return
+         end if
+         if (.not. s%tol_residual > 0) then
+            errmsg = 'solver:tol_residual = '//str(s%tol_residual)//' must be > 0'
+            return
+         end if
+         if (.not. s%tol_kinetic > 0) then
+            errmsg = 'solver:tol_kinetic = '//str(s%tol_kinetic)//' must be > 0'
+            return
+         end if
+         if (s%check_interval < 1) then
+            errmsg = 'solver:check_interval = '//str(s%check_interval)//' must be >= 1'
+            return
+         end if
+         if (s%power_iterations < 0) then
+            errmsg = 'solver:power_iterations = '//str(s%power_iterations)//' must be >= 0'
+            return
+         end if
+      end associate
+
+      if (deck%output%history_interval < 1) then
+         errmsg = 'output:history_interval = '//str(deck%output%history_interval)//' must be >= 1'
+         return
+      end if
+
+      last_stage = 0
+      do i = 1, size(deck%dirichlet)
+         call validate_edge_load(deck%dirichlet(i), 'dirichlet', i)
+         if (stat /= 1) return
+         last_stage = max(last_stage, deck%dirichlet(i)%times(deck%dirichlet(i)%nstage))
+      end do
+      do i = 1, size(deck%traction)
+         call validate_edge_load(deck%traction(i), 'traction', i)
+         if (stat /= 1) return
+         last_stage = max(last_stage, deck%traction(i)%times(deck%traction(i)%nstage))
+      end do
+      if (size(deck%dirichlet) == 0) then
+         errmsg = 'no &dirichlet group: the body needs supports (a rigid-body motion would be free)'
+         return
+      end if
+      if (deck%solver%t_end == 0) then
+         deck%solver%t_end = 10*last_stage
+      else if (deck%solver%t_end < last_stage) then
+         errmsg = 'solver:t_end = '//str(deck%solver%t_end)//' ends before the last load stage ('// &
+                  str(last_stage)//' s)'
+         return
+      end if
+
+      if (deck%contact%present) then
+         associate (c => deck%contact)
+            if (edge_id(c%edge) == 0) then
+               errmsg = "contact:edge = '"//trim(c%edge)//"' is not one of "//join(edges, ', ')
+               return
+            end if
+            c%edge = lower(c%edge)
+            if (.not. (c%xmin <= c%xmax .and. c%ymin <= c%ymax)) then
+               errmsg = 'contact: the range needs xmin <= xmax and ymin <= ymax'
+               return
+            end if
+            norm = norm2(c%obstacle_normal)
+            if (abs(norm - 1) > 1.0e-6_wp) then
+               errmsg = 'contact:obstacle_normal = '//str(c%obstacle_normal(1))//', '// &
+                        str(c%obstacle_normal(2))//' must be a unit vector (length '//str(norm)//')'
+               return
+            end if
+            c%direction = lower(c%direction)
+            if (.not. any(c%direction == [character(len=4) :: 'ccw', 'cw'])) then
+               errmsg = "contact:direction = '"//trim(c%direction)//"' is not one of 'ccw', 'cw'"
+               return
+            end if
+            c%multiplier = upper2(c%multiplier)
+            if (.not. any(c%multiplier == [character(len=4) :: 'P1', 'P0'])) then
+               errmsg = "contact:multiplier = '"//trim(c%multiplier)//"' is not one of 'P1', 'P0'"
+               return
+            end if
+            c%friction = lower(c%friction)
+            if (.not. any(c%friction == [character(len=16) :: 'frictionless', 'tresca'])) then
+               errmsg = "contact:friction = '"//trim(c%friction)//"' is not one of 'frictionless', 'tresca'"
+               return
+            end if
+            if (.not. c%threshold >= 0) then
+               errmsg = 'contact:threshold = '//str(c%threshold)//' must be >= 0 (MPa)'
+               return
+            end if
+            c%npoints = count(c%threshold_abscissa /= unset)
+            if (count(c%threshold_values /= unset) /= c%npoints) then
+               errmsg = 'contact: threshold_abscissa and threshold_values need the same number of entries'
+               return
+            end if
+            if (c%npoints > 0) then
+               if (any(c%threshold_abscissa(c%npoints + 1:) /= unset) .or. &
+                   any(c%threshold_values(c%npoints + 1:) /= unset)) then
+                  errmsg = 'contact: threshold_abscissa/threshold_values must be given from the first entry on'
+                  return
+               end if
+               if (c%threshold /= 0) then
+                  errmsg = 'contact: give either threshold or threshold_abscissa/threshold_values, not both'
+                  return
+               end if
+               if (any(c%threshold_values(1:c%npoints) < 0)) then
+                  errmsg = 'contact:threshold_values must all be >= 0 (MPa)'
+                  return
+               end if
+               do i = 2, c%npoints
+                  if (.not. c%threshold_abscissa(i) > c%threshold_abscissa(i - 1)) then
+                     errmsg = 'contact:threshold_abscissa must increase strictly (entry '//str(i)//')'
+                     return
+                  end if
+               end do
+            end if
+            if (c%friction == 'frictionless' .and. (c%threshold /= 0 .or. c%npoints > 0)) then
+               errmsg = "contact: a threshold is given but friction = 'frictionless'; use friction = 'tresca'"
+               return
+            end if
+            c%tresca_scope = lower(c%tresca_scope)
+            if (.not. any(c%tresca_scope == [character(len=8) :: 'all', 'contact'])) then
+               errmsg = "contact:tresca_scope = '"//trim(c%tresca_scope)//"' is not one of 'all', 'contact'"
+               return
+            end if
+            c%method = lower(c%method)
+            if (.not. any(c%method == [character(len=8) :: 'lagrange', 'penalty'])) then
+               errmsg = "contact:method = '"//trim(c%method)//"' is not one of 'lagrange', 'penalty'"
+               return
+            end if
+            if (c%method == 'penalty' .and. .not. c%penalty_stiffness > 0) then
+               errmsg = "contact:method = 'penalty' needs penalty_stiffness > 0 (MPa/mm), got "// &
+                        str(c%penalty_stiffness)
+               return
+            end if
+            if (c%method == 'lagrange' .and. c%penalty_stiffness /= 0) then
+               errmsg = "contact:penalty_stiffness is set but method = 'lagrange' ignores it"
+               return
+            end if
+         end associate
+      end if
+      stat = 0
+      errmsg = ''
+   contains
+      subroutine validate_edge_load(cfg, group, k)
+         type(edge_load_cfg_t), intent(inout) :: cfg
+         character(len=*), intent(in) :: group
+         integer, intent(in) :: k
+         character(len=:), allocatable :: g
+         integer :: ntimes, j
+         g = 'line '//str(cfg%line)//': &'//group//' (#'//str(k)//')'
+         stat = 2
+         if (edge_id(cfg%edge) == 0) then
+            errmsg = g//": edge = '"//trim(cfg%edge)//"' is not one of "//join(edges, ', ')
+            return
+         end if
+         cfg%edge = lower(cfg%edge)
+         cfg%component = lower(cfg%component)
+         if (.not. any(cfg%component == [character(len=8) :: 'x', 'y'])) then
+            errmsg = g//": component = '"//trim(cfg%component)//"' is not one of 'x', 'y'"
+            return
+         end if
+         if (.not. (cfg%xmin <= cfg%xmax .and. cfg%ymin <= cfg%ymax)) then
+            errmsg = g//': the range needs xmin <= xmax and ymin <= ymax'
+            return
+         end if
+         cfg%nstage = count(cfg%values /= unset)
+         if (cfg%nstage == 0) then
+            errmsg = g//': values is required (one value per load stage)'
+            return
+         end if
+         if (any(cfg%values(cfg%nstage + 1:) /= unset)) then
+            errmsg = g//': values must be given from the first entry on'
+            return
+         end if
+         ntimes = count(cfg%times /= unset)
+         if (ntimes == 0) then
+            if (cfg%nstage > 1) then
+               errmsg = g//': '//str(cfg%nstage)//' stages need times (the end time of each stage, s)'
+               return
+            end if
+            if (deck%solver%t_ramp == unset) then
+               errmsg = g//': no times given and solver:t_ramp is not set (the ramp duration, s)'
+               return
+            end if
+            cfg%times(1) = deck%solver%t_ramp
+         else if (ntimes /= cfg%nstage .or. any(cfg%times(cfg%nstage + 1:) /= unset)) then
+            errmsg = g//': times needs one entry per value ('//str(cfg%nstage)//')'
+            return
+         end if
+         if (.not. cfg%times(1) > 0) then
+            errmsg = g//': times(1) = '//str(cfg%times(1))//' must be > 0'
+            return
+         end if
+         do j = 2, cfg%nstage
+            if (.not. cfg%times(j) > cfg%times(j - 1)) then
+               errmsg = g//': times must increase strictly (times('//str(j)//') = '//str(cfg%times(j))//')'
+               return
+            end if
+         end do
+         stat = 1
+      end subroutine validate_edge_load
+   end subroutine validate
+
+   pure function upper2(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=len(s)) :: t
+      integer :: i, c
+      t = s
+      do i = 1, len(s)
+         c = iachar(s(i:i))
+         if (c >= iachar('a') .and. c <= iachar('z')) t(i:i) = achar(c - 32)
+      end do
+   end function upper2
+
+   ! ---- echo -------------------------------------------------------------------------------
+
+   !> The effective values as a deck (reading it back gives the same values).
+   function echo(deck) result(text)
+      type(deck_t), intent(in) :: deck
+      character(len=:), allocatable :: text
+      character(len=1), parameter :: nl = new_line('a')
+      integer :: i
+
+      text = '&mesh'//nl// &
+             kv('lx', str(deck%mesh%lx))//kv('ly', str(deck%mesh%ly))// &
+             kv('nx', str(deck%mesh%nx))//kv('ny', str(deck%mesh%ny))// &
+             kv('level', str(deck%mesh%level))//'/'//nl
+      text = text//'&material'//nl// &
+             kv('young', str(deck%material%young))//kv('poisson', str(deck%material%poisson))// &
+             kv('density', str(deck%material%density))//'/'//nl
+      do i = 1, size(deck%dirichlet)
+         text = text//'&dirichlet'//nl//edge_load(deck%dirichlet(i))//'/'//nl
+      end do
+      do i = 1, size(deck%traction)
+         text = text//'&traction'//nl//edge_load(deck%traction(i))//'/'//nl
+      end do
+      if (deck%contact%present) then
+         associate (c => deck%contact)
+            text = text//'&contact'//nl//kv('edge', q(c%edge))//range_text(c%xmin, c%xmax, c%ymin, c%ymax)// &
+                   kv('obstacle_point', reals(c%obstacle_point))// &
+                   kv('obstacle_normal', reals(c%obstacle_normal))
+            if (all(c%origin /= unset)) text = text//kv('origin', reals(c%origin))
+            text = text//kv('direction', q(c%direction))//kv('multiplier', q(c%multiplier))// &
+                   kv('friction', q(c%friction))
+            if (c%npoints > 0) then
+               text = text//kv('threshold_abscissa', reals(c%threshold_abscissa(1:c%npoints)))// &
+                      kv('threshold_values', reals(c%threshold_values(1:c%npoints)))
+            else
+               text = text//kv('threshold', str(c%threshold))
+            end if
+            text = text//kv('tresca_scope', q(c%tresca_scope))//kv('method', q(c%method))
+            if (c%method == 'penalty') text = text//kv('penalty_stiffness', str(c%penalty_stiffness))
+            text = text//'/'//nl
+         end associate
+      end if
+      associate (s => deck%solver)
+         text = text//'&solver'//nl//kv('dt', str(s%dt))//kv('dt_factor', str(s%dt_factor))// &
+                kv('allow_unstable', str(s%allow_unstable))
+         if (s%t_ramp /= unset) text = text//kv('t_ramp', str(s%t_ramp))
+         text = text//kv('t_end', str(s%t_end))//kv('max_steps', str(s%max_steps))// &
+                kv('damping', q(s%damping))//kv('alpha', str(s%alpha))// &
+                kv('damping_interval', str(s%damping_interval))// &
+                kv('tol_residual', str(s%tol_residual))//kv('tol_kinetic', str(s%tol_kinetic))// &
+                kv('check_interval', str(s%check_interval))// &
+                kv('power_iterations', str(s%power_iterations))//'/'//nl
+      end associate
+      text = text//'&output'//nl//kv('history_interval', str(deck%output%history_interval))// &
+             kv('xdmf', str(deck%output%xdmf))//kv('progress', str(deck%output%progress))//'/'//nl
+   contains
+      function kv(key, value) result(line)
+         character(len=*), intent(in) :: key, value
+         character(len=:), allocatable :: line
+         line = '   '//key//' = '//value//nl
+      end function kv
+      function q(s) result(t)
+         character(len=*), intent(in) :: s
+         character(len=:), allocatable :: t
+         t = "'"//trim(s)//"'"
+      end function q
+      function reals(a) result(t)
+         real(wp), intent(in) :: a(:)
+         character(len=:), allocatable :: t
+         integer :: j
+         t = ''
+         do j = 1, size(a)
+            if (j > 1) t = t//', '
+            t = t//str(a(j))
+         end do
+      end function reals
+      function range_text(x0, x1, y0, y1) result(t)
+         real(wp), intent(in) :: x0, x1, y0, y1
+         character(len=:), allocatable :: t
+         t = ''
+         if (x0 /= -unset) t = t//kv('xmin', str(x0))
+         if (x1 /= unset) t = t//kv('xmax', str(x1))
+         if (y0 /= -unset) t = t//kv('ymin', str(y0))
+         if (y1 /= unset) t = t//kv('ymax', str(y1))
+      end function range_text
+      function edge_load(cfg) result(t)
+         type(edge_load_cfg_t), intent(in) :: cfg
+         character(len=:), allocatable :: t
+         t = kv('edge', q(cfg%edge))//range_text(cfg%xmin, cfg%xmax, cfg%ymin, cfg%ymax)// &
+             kv('component', q(cfg%component))//kv('values', reals(cfg%values(1:cfg%nstage)))// &
+             kv('times', reals(cfg%times(1:cfg%nstage)))
+      end function edge_load
+   end function echo
+end module contact2d_deck

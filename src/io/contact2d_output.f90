@@ -1,0 +1,263 @@
+!> The HDF5 output file of a run (SPEC section 8) and its XDMF sidecar for ParaView.
+!>
+!> Layout: root attributes; /mesh; /contact (contact runs); /history/<name> extendible series,
+!> buffered and flushed every `flush_samples` samples or `flush_seconds` of wall time; /final
+!> written at the end, also after a blow-up, so the file always opens.
+module contact2d_output
+   use contact2d_kinds, only: wp, i8
+   use contact2d_version, only: program_name, program_version, output_format_version
+   use contact2d_h5, only: h5file_t, h5series_t
+   use contact2d_deck, only: deck_t
+   use contact2d_model, only: model_t
+   use contact2d_explicit, only: explicit_t
+   use contact2d_q1, only: q1_stress_average
+   use contact2d_strings, only: str
+   use hdf5, only: hid_t
+   implicit none
+   private
+   public :: output_t, history_names
+
+   !> History series: SPEC section 8 names first, then additions (docs/output.md).
+   character(len=24), parameter :: history_names(13) = [character(len=24) :: &
+      'time', 'kinetic_energy', 'strain_energy', 'external_work', 'friction_dissipation', &
+      'damping_dissipation', 'energy_balance_error', 'residual', 'normal_force_total', &
+      'tangential_force_total', 'normal_contact_work', 'step', 'damping_alpha']
+   character(len=8), parameter :: history_units(13) = [character(len=8) :: &
+      's', 'mJ', 'mJ', 'mJ', 'mJ', 'mJ', '1', '1', 'N', 'N', 'mJ', '1', '1/s']
+   integer, parameter :: nseries = size(history_names)
+   integer, parameter :: flush_samples = 256
+   real(wp), parameter :: flush_seconds = 2.0_wp
+
+   !> An open output file.
+   type :: output_t
+      type(h5file_t) :: file
+      type(h5series_t) :: series(nseries)
+      integer(hid_t) :: history = -1
+      real(wp) :: buffer(nseries, flush_samples) = 0
+      integer :: nbuf = 0
+      integer(i8) :: last_flush_clock = 0
+      logical :: xdmf = .true.
+   contains
+      procedure :: open => output_open
+      procedure :: sample => output_sample
+      procedure :: flush_history => output_flush_history
+      procedure :: finish => output_finish
+   end type output_t
+
+contains
+
+   !> Create the file and write what is known before the first step.
+   subroutine output_open(this, path, overwrite, deck, model, stat, errmsg)
+      class(output_t), intent(inout) :: this
+      character(len=*), intent(in) :: path
+      logical, intent(in) :: overwrite
+      type(deck_t), intent(in) :: deck
+      type(model_t), intent(in) :: model
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer(hid_t) :: root, g
+      integer :: k
+
+      this%xdmf = deck%output%xdmf
+      call this%file%create(path, overwrite)
+      root = this%file%id
+      call this%file%attr(root, 'program', program_name)
+      call this%file%attr(root, 'program_version', program_version)
+      call this%file%attr(root, 'format_version', output_format_version)
+      call this%file%attr(root, 'deck', deck%text)
+      call this%file%attr(root, 'deck_path', deck%path)
+      call this%file%attr(root, 'effective_deck', deck%effective)
+      call this%file%attr(root, 'units', 'length mm, force N, stress MPa, mass t, time s, energy mJ')
+      if (model%contact%active) then
+         call this%file%attr(root, 'multiplier', 'P1')
+      else
+         call this%file%attr(root, 'multiplier', 'none')
+      end if
+      call this%file%attr(root, 'dt', model%dt)
+      call this%file%attr(root, 'dt_critical', model%dt_critical)
+      call this%file%attr(root, 'element_count', model%mesh%nel)
+      call this%file%attr(root, 'node_count', model%mesh%nnode)
+      call this%file%attr(root, 'nx', model%mesh%nx)
+      call this%file%attr(root, 'ny', model%mesh%ny)
+      call this%file%attr(root, 'converged', 0)
+      call this%file%attr(root, 'status', 'running')
+
+      g = this%file%group(root, 'mesh')
+      call this%file%dataset(g, 'coordinates', model%mesh%x, 'mm')
+      call this%file%dataset(g, 'connectivity', model%mesh%conn, '1')
+      call this%file%dataset(g, 'mass', model%stiff%mass, 't')
+      call this%file%close_group(g)
+
+      this%history = this%file%group(root, 'history')
+      do k = 1, nseries
+         call this%series(k)%create(this%file, this%history, trim(history_names(k)), &
+                                    trim(history_units(k)), flush_samples)
+      end do
+      call this%file%flush()
+      call system_clock(this%last_flush_clock)
+      stat = this%file%stat
+      errmsg = ''
+      if (stat /= 0) errmsg = this%file%errmsg
+   end subroutine output_open
+
+   !> Record one history sample (buffered).
+   subroutine output_sample(this, solver, model, residual)
+      class(output_t), intent(inout) :: this
+      type(explicit_t), intent(in) :: solver
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: residual
+      integer(i8) :: now, rate
+      this%nbuf = this%nbuf + 1
+      associate (c => model%contact)
+         this%buffer(:, this%nbuf) = [solver%time, solver%kinetic, solver%strain, solver%external_work, &
+                                      c%friction_dissipation, solver%damping_dissipation, &
+                                      solver%balance_error(c%friction_dissipation, c%normal_work), &
+                                      residual, c%normal_total, c%tangential_total, c%normal_work, &
+                                      real(solver%step, wp), solver%alpha]
+      end associate
+      call system_clock(now, rate)
+      if (this%nbuf == flush_samples .or. real(now - this%last_flush_clock, wp) > flush_seconds*rate) then
+         call this%flush_history()
+      end if
+   end subroutine output_sample
+
+   !> Append the buffered samples and flush the file.
+   subroutine output_flush_history(this)
+      class(output_t), intent(inout) :: this
+      integer :: k
+      if (this%nbuf > 0) then
+         do k = 1, nseries
+            call this%series(k)%append(this%file, this%buffer(k, 1:this%nbuf))
+         end do
+         this%nbuf = 0
+      end if
+      call this%file%flush()
+      call system_clock(this%last_flush_clock)
+   end subroutine output_flush_history
+
+   !> Write /final and the closing attributes, close the file, write the XDMF sidecar.
+   subroutine output_finish(this, model, solver, converged, status, wall_seconds, timings, stat, errmsg)
+      class(output_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      type(explicit_t), intent(in) :: solver
+      logical, intent(in) :: converged
+      character(len=*), intent(in) :: status
+      real(wp), intent(in) :: wall_seconds
+      real(wp), intent(in) :: timings(:)   !< set-up, step loop, contact, output [s]
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer(hid_t) :: root, g
+      real(wp), allocatable :: stress(:, :), reaction(:, :)
+      integer :: e, k, a
+
+      call this%flush_history()
+      do k = 1, nseries
+         call this%series(k)%close(this%file)
+      end do
+      call this%file%close_group(this%history)
+      root = this%file%id
+      call this%file%attr(root, 'steps', int(solver%step))
+      call this%file%attr(root, 'converged', merge(1, 0, converged))
+      call this%file%attr(root, 'status', status)
+      call this%file%attr(root, 'wall_seconds', wall_seconds)
+      call this%file%attr(root, 'time_setup_seconds', timings(1))
+      call this%file%attr(root, 'time_steps_seconds', timings(2))
+      call this%file%attr(root, 'time_contact_seconds', timings(3))
+      call this%file%attr(root, 'time_output_seconds', timings(4))
+      call this%file%attr(root, 'final_time', solver%time)
+
+      allocate (stress(3, model%mesh%nel))
+      do e = 1, model%mesh%nel
+         stress(:, e) = q1_stress_average(model%mesh%element_coordinates(e), model%material%dmat, &
+                                          [(solver%u(:, model%mesh%conn(a, e)), a=1, 4)])
+      end do
+      reaction = (solver%fint - solver%fext)*(1 - model%load%free)
+      g = this%file%group(root, 'final')
+      call this%file%dataset(g, 'displacement', solver%u, 'mm')
+      call this%file%dataset(g, 'velocity', solver%v, 'mm/s')
+      call this%file%dataset(g, 'stress', stress, 'MPa')
+      call this%file%dataset(g, 'reaction', reaction, 'N')
+      call this%file%close_group(g)
+      call this%file%close()
+      stat = this%file%stat
+      errmsg = ''
+      if (stat /= 0) then
+         errmsg = this%file%errmsg
+         return
+      end if
+      if (this%xdmf) call write_xdmf(this%file%path, model, stat, errmsg)
+   end subroutine output_finish
+
+   !> <output>.xmf next to the HDF5 file: mesh, final displacement, velocity and stress.
+   subroutine write_xdmf(h5path, model, stat, errmsg)
+      character(len=*), intent(in) :: h5path
+      type(model_t), intent(in) :: model
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      character(len=:), allocatable :: xmf, base, nn, ne
+      character(len=256) :: msg
+      integer :: unit, dot, slash
+
+      dot = index(h5path, '.', back=.true.)
+      slash = index(h5path, '/', back=.true.)
+      if (dot > slash + 1) then
+         xmf = h5path(1:dot - 1)//'.xmf'
+      else
+         xmf = h5path//'.xmf'
+      end if
+      base = h5path(slash + 1:)
+      nn = str(model%mesh%nnode)
+      ne = str(model%mesh%nel)
+      open (newunit=unit, file=xmf, status='replace', action='write', iostat=stat, iomsg=msg)
+      if (stat /= 0) then
+         errmsg = 'cannot write '//xmf//': '//trim(msg)
+         return
+      end if
+      write (unit, '(a)') '<?xml version="1.0" ?>'
+      write (unit, '(a)') '<Xdmf Version="2.0">'
+      write (unit, '(a)') ' <Domain>'
+      write (unit, '(a)') '  <Grid Name="final" GridType="Uniform">'
+      write (unit, '(a)') '   <Topology TopologyType="Quadrilateral" NumberOfElements="'//ne//'">'
+      ! connectivity is 1-based in the file; XDMF wants 0-based
+      write (unit, '(a)') '    <DataItem ItemType="Function" Function="$0 - 1" Dimensions="'//ne//' 4">'
+      write (unit, '(a)') '     <DataItem Dimensions="'//ne//' 4" NumberType="Int" Format="HDF">'// &
+         base//':/mesh/connectivity</DataItem>'
+      write (unit, '(a)') '    </DataItem>'
+      write (unit, '(a)') '   </Topology>'
+      write (unit, '(a)') '   <Geometry GeometryType="XY">'
+      write (unit, '(a)') '    <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
+         base//':/mesh/coordinates</DataItem>'
+      write (unit, '(a)') '   </Geometry>'
+      call vector('displacement', '/final/displacement')
+      call vector('velocity', '/final/velocity')
+      write (unit, '(a)') '   <Attribute Name="stress_xx_yy_xy" AttributeType="Matrix" Center="Cell">'
+      write (unit, '(a)') '    <DataItem Dimensions="'//ne//' 3" NumberType="Float" Precision="8" Format="HDF">'// &
+         base//':/final/stress</DataItem>'
+      write (unit, '(a)') '   </Attribute>'
+      write (unit, '(a)') '  </Grid>'
+      write (unit, '(a)') ' </Domain>'
+      write (unit, '(a)') '</Xdmf>'
+      close (unit)
+      stat = 0
+      errmsg = ''
+   contains
+      subroutine vector(name, path)
+         character(len=*), intent(in) :: name, path
+         ! pad (x, y) with a zero z so that ParaView's Warp By Vector works
+         write (unit, '(a)') '   <Attribute Name="'//name//'" AttributeType="Vector" Center="Node">'
+         write (unit, '(a)') '    <DataItem ItemType="Function" Function="JOIN($0, $1, 0*$1)" Dimensions="'//nn//' 3">'
+         write (unit, '(a)') '     <DataItem ItemType="HyperSlab" Dimensions="'//nn//' 1">'
+         write (unit, '(a)') '      <DataItem Dimensions="3 2" Format="XML">0 0 1 1 '//nn//' 1</DataItem>'
+         write (unit, '(a)') '      <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
+            base//':'//path//'</DataItem>'
+         write (unit, '(a)') '     </DataItem>'
+         write (unit, '(a)') '     <DataItem ItemType="HyperSlab" Dimensions="'//nn//' 1">'
+         write (unit, '(a)') '      <DataItem Dimensions="3 2" Format="XML">0 1 1 1 '//nn//' 1</DataItem>'
+         write (unit, '(a)') '      <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
+            base//':'//path//'</DataItem>'
+         write (unit, '(a)') '     </DataItem>'
+         write (unit, '(a)') '    </DataItem>'
+         write (unit, '(a)') '   </Attribute>'
+      end subroutine vector
+   end subroutine write_xdmf
+end module contact2d_output

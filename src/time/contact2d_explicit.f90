@@ -1,0 +1,254 @@
+!> Central-difference time integration with mass-proportional damping and the forward-increment
+!> contact step (SPEC sections 4, 5, 6).
+!>
+!> One step, from u^n and v^(n-1/2):
+!>   1. f_int = K u^n, f_ext(t_n)
+!>   2. predictor  v* = ((1 - a dt/2) v + dt M^-1 (f_ext - f_int)) / (1 + a dt/2),  u~ = u^n + dt v*
+!>      prescribed dofs take their value at t_(n+1)
+!>   3. contact forces F_c chosen so that u^(n+1) = u~ + c M^-1 F_c meets the constraints
+!>   4. v^(n+1/2) = (u^(n+1) - u^n)/dt, energies of SPEC section 6.
+!> The step does no I/O and no allocation.
+module contact2d_explicit
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use contact2d_kinds, only: wp, i8
+   use contact2d_stiffness, only: stiffness_t
+   use contact2d_loading, only: loading_t
+   use contact2d_contact, only: contact_t
+   implicit none
+   private
+   public :: explicit_t, damping_none, damping_given, damping_auto
+
+   integer, parameter :: damping_none = 0, damping_given = 1, damping_auto = 2
+
+   !> Kinetic energy above this multiple of the absolute work put in means the run blew up.
+   real(wp), parameter :: blowup_ratio = 1.0e3_wp
+
+   !> State and settings of the explicit integrator.
+   type :: explicit_t
+      integer :: nnode = 0
+      real(wp) :: dt = 0                   !< time step [s]
+      real(wp) :: alpha = 0                !< current mass-proportional damping [1/s]
+      integer :: damping = damping_none    !< damping mode
+      integer :: damping_interval = 20     !< steps between omega_1 estimates (auto)
+      integer(i8) :: step = 0              !< steps done
+      real(wp) :: time = 0                 !< t_n [s]
+      real(wp), allocatable :: u(:, :)     !< u^n [mm]
+      real(wp), allocatable :: v(:, :)     !< v^(n-1/2) [mm/s]
+      real(wp), allocatable :: unew(:, :)  !< u~, then u^(n+1) [mm]
+      real(wp), allocatable :: fint(:, :)  !< K u^n of the last step [N]
+      real(wp), allocatable :: fext(:, :)  !< f_ext(t_n) of the last step [N]
+      real(wp), allocatable :: fc(:, :)    !< contact force on the body of the last step [N]
+      real(wp), allocatable :: mass(:)     !< lumped mass [t]
+      real(wp), allocatable :: cval(:)     !< curve values at t_n
+      real(wp), allocatable :: cnext(:)    !< curve values at t_(n+1)
+      ! automatic damping: u and K u at the last estimate
+      real(wp), allocatable :: u_mark(:, :), f_mark(:, :), work(:, :)
+      integer, allocatable :: pres_elements(:)   !< elements touching a prescribed dof
+      ! energies (SPEC section 6) [mJ = N mm]
+      real(wp) :: kinetic = 0              !< 1/2 v^(n+1/2) M v^(n+1/2)
+      real(wp) :: strain = 0               !< 1/2 u^(n+1) K u^n
+      real(wp) :: external_work = 0        !< loads and Dirichlet reactions
+      real(wp) :: work_in = 0              !< sum of |external work increments|
+      real(wp) :: damping_dissipation = 0
+      logical :: blown_up = .false.
+   contains
+      procedure :: init => explicit_init
+      procedure :: advance => explicit_advance
+      procedure :: update_damping => explicit_update_damping
+      procedure :: residual => explicit_residual
+      procedure :: balance_error => explicit_balance_error
+   end type explicit_t
+
+contains
+
+   !> Zero state; damping mode and value; the elements touching prescribed dofs.
+   subroutine explicit_init(this, stiff, load, dt, damping, alpha, damping_interval)
+      class(explicit_t), intent(out) :: this
+      type(stiffness_t), intent(in) :: stiff
+      type(loading_t), intent(in) :: load
+      real(wp), intent(in) :: dt, alpha
+      integer, intent(in) :: damping, damping_interval
+      integer :: nnode, e
+      logical, allocatable :: touches(:)
+
+      nnode = size(stiff%mass)
+      this%nnode = nnode
+      this%dt = dt
+      this%damping = damping
+      this%alpha = merge(alpha, 0.0_wp, damping == damping_given)
+      this%damping_interval = damping_interval
+      allocate (this%u(2, nnode), this%v(2, nnode), this%unew(2, nnode), this%fint(2, nnode), &
+                this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode))
+      this%u = 0; this%v = 0; this%unew = 0; this%fint = 0; this%fext = 0; this%fc = 0
+      this%mass = stiff%mass
+      allocate (this%cval(load%ncurve), this%cnext(load%ncurve))
+      call load%curve_values(0.0_wp, this%cnext)
+      if (damping == damping_auto) then
+         allocate (this%u_mark(2, nnode), this%f_mark(2, nnode))
+         this%u_mark = 0
+         this%f_mark = 0
+         allocate (touches(size(stiff%conn, 2)))
+         do e = 1, size(touches)
+            touches(e) = any(load%free(:, stiff%conn(:, e)) == 0)
+         end do
+         this%pres_elements = pack([(e, e=1, size(touches))], touches)
+      end if
+   end subroutine explicit_init
+
+   !> Run up to nsteps steps; stops early (blown_up = .true.) if the energy runs away.
+   subroutine explicit_advance(this, stiff, load, contact, nsteps)
+      class(explicit_t), intent(inout) :: this
+      type(stiffness_t), intent(in) :: stiff
+      type(loading_t), intent(in) :: load
+      type(contact_t), intent(inout) :: contact
+      integer, intent(in) :: nsteps
+      integer :: k, i, p, node, comp
+      real(wp) :: dt, a1, a2inv, c, dtm, vnew, vbar, ekin, edamp, estrain, work, acc, f
+
+      dt = this%dt
+      do k = 1, nsteps
+         ! 1. internal force at u^n, loads at t_n, prescribed values at t_(n+1)
+         call stiff%apply(this%u, this%fint)
+         if (this%damping == damping_auto) then
+            if (mod(this%step, int(this%damping_interval, i8)) == 0) call this%update_damping(stiff, load)
+         end if
+         a1 = 1 - 0.5_wp*this%alpha*dt
+         a2inv = 1/(1 + 0.5_wp*this%alpha*dt)
+         c = dt*dt*a2inv
+         this%cval = this%cnext
+         call load%curve_values(this%time + dt, this%cnext)
+         do p = 1, load%ntrac
+            this%fext(load%tcomp(p), load%tnode(p)) = 0
+         end do
+         do p = 1, load%ntrac
+            node = load%tnode(p)
+            comp = load%tcomp(p)
+            this%fext(comp, node) = this%fext(comp, node) + this%cval(load%tcurve(p))*load%tweight(p)
+         end do
+         ! 2. predictor
+         do i = 1, this%nnode
+            dtm = dt/this%mass(i)
+            this%unew(:, i) = this%u(:, i) + dt*a2inv*(a1*this%v(:, i) + dtm*(this%fext(:, i) - this%fint(:, i)))
+         end do
+         do p = 1, load%npres
+            this%unew(load%pcomp(p), load%pnode(p)) = this%cnext(load%pcurve(p))
+         end do
+         ! 3. contact
+         if (contact%active) call contact%enforce(this%u, this%v, this%unew, this%mass, c, dt, this%fc)
+         ! 4a. external work of the reactions (inertial and damping parts included) and loads,
+         !     with the centred increment (u^(n+1) - u^(n-1))/2 = dt vbar
+         work = 0
+         do p = 1, load%npres
+            node = load%pnode(p)
+            comp = load%pcomp(p)
+            vnew = (this%unew(comp, node) - this%u(comp, node))/dt
+            vbar = 0.5_wp*(vnew + this%v(comp, node))
+            acc = (vnew - this%v(comp, node))/dt
+            f = this%mass(node)*(acc + this%alpha*vbar) + this%fint(comp, node)
+            work = work + f*dt*vbar
+         end do
+         do p = 1, load%ntrac
+            node = load%tnode(p)
+            comp = load%tcomp(p)
+            vnew = (this%unew(comp, node) - this%u(comp, node))/dt
+            vbar = 0.5_wp*(vnew + this%v(comp, node))
+            work = work + this%cval(load%tcurve(p))*load%tweight(p)*dt*vbar
+         end do
+         this%external_work = this%external_work + work
+         this%work_in = this%work_in + abs(work)
+         ! 4b. velocities, kinetic/damping/strain energies, new state
+         ekin = 0
+         edamp = 0
+         estrain = 0
+         do i = 1, this%nnode
+            vnew = (this%unew(1, i) - this%u(1, i))/dt
+            vbar = 0.5_wp*(vnew + this%v(1, i))
+            ekin = ekin + this%mass(i)*vnew*vnew
+            edamp = edamp + this%mass(i)*vbar*vbar
+            this%v(1, i) = vnew
+            vnew = (this%unew(2, i) - this%u(2, i))/dt
+            vbar = 0.5_wp*(vnew + this%v(2, i))
+            ekin = ekin + this%mass(i)*vnew*vnew
+            edamp = edamp + this%mass(i)*vbar*vbar
+            this%v(2, i) = vnew
+            estrain = estrain + this%unew(1, i)*this%fint(1, i) + this%unew(2, i)*this%fint(2, i)
+            this%u(:, i) = this%unew(:, i)
+         end do
+         this%kinetic = 0.5_wp*ekin
+         this%strain = 0.5_wp*estrain
+         this%damping_dissipation = this%damping_dissipation + this%alpha*dt*edamp
+         this%step = this%step + 1
+         this%time = real(this%step, wp)*dt
+         ! blow-up guard: runaway kinetic energy or non-finite values
+         if (.not. ieee_is_finite(this%kinetic) .or. &
+             this%kinetic > blowup_ratio*max(this%work_in, tiny(1.0_wp))) then
+            this%blown_up = .true.
+            return
+         end if
+      end do
+   end subroutine explicit_advance
+
+   !> Automatic damping (dynamic relaxation, SPEC section 5): alpha = 2 omega_1, with omega_1^2
+   !> the Rayleigh quotient of the free part du_f of the displacement increment since the last
+   !> estimate, du_f^T K du_f / du_f^T M du_f. Called right after f_int = K u^n, so (u, f_int)
+   !> and the stored mark are consistent pairs: K du_f = (f_int - f_mark) - K du_p, and K du_p
+   !> only involves the elements that touch a prescribed dof.
+   subroutine explicit_update_damping(this, stiff, load)
+      class(explicit_t), intent(inout) :: this
+      type(stiffness_t), intent(in) :: stiff
+      type(loading_t), intent(in) :: load
+      real(wp) :: num, den, du
+      integer :: i, j
+      ! work = du_p (the prescribed part of du), then K du_p over the elements that see it
+      do i = 1, this%nnode
+         do j = 1, 2
+            this%work(j, i) = (this%u(j, i) - this%u_mark(j, i))*(1 - load%free(j, i))
+         end do
+      end do
+      this%f_mark = this%fint - this%f_mark                      ! K du
+      call stiff%apply_elements(this%pres_elements, this%work, this%f_mark, subtract=.true.)
+      num = 0
+      den = 0
+      do i = 1, this%nnode
+         do j = 1, 2
+            du = (this%u(j, i) - this%u_mark(j, i))*load%free(j, i)
+            num = num + du*this%f_mark(j, i)
+            den = den + this%mass(i)*du*du
+         end do
+      end do
+      if (num > 0 .and. den > 0) this%alpha = min(2*sqrt(num/den), 2/this%dt)
+      this%u_mark = this%u
+      this%f_mark = this%fint
+   end subroutine explicit_update_damping
+
+   !> Out-of-balance force on the free dofs at t_n (contact forces included), relative to the
+   !> largest of the reactions, the loads and the contact forces (SPEC section 5).
+   real(wp) function explicit_residual(this, load) result(rel)
+      class(explicit_t), intent(in) :: this
+      type(loading_t), intent(in) :: load
+      real(wp) :: rfree, scale
+      rfree = maxval(abs((this%fext - this%fint + this%fc)*load%free))
+      scale = max(maxval(abs((this%fint - this%fext)*(1 - load%free))), &
+                  maxval(abs(this%fext)), maxval(abs(this%fc)))
+      if (scale > 0) then
+         rel = rfree/scale
+      else
+         rel = 0
+      end if
+   end function explicit_residual
+
+   !> |W_ext - (E_kin + E_strain + D_friction + D_damping + W_normal)| / max(terms).
+   real(wp) function explicit_balance_error(this, friction, normal_work) result(err)
+      class(explicit_t), intent(in) :: this
+      real(wp), intent(in) :: friction, normal_work
+      real(wp) :: scale
+      scale = max(abs(this%external_work), abs(this%kinetic), abs(this%strain), abs(friction), &
+                  abs(this%damping_dissipation), abs(normal_work))
+      if (scale > 0) then
+         err = abs(this%external_work - (this%kinetic + this%strain + friction + &
+                                          this%damping_dissipation + normal_work))/scale
+      else
+         err = 0
+      end if
+   end function explicit_balance_error
+end module contact2d_explicit
