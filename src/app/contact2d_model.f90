@@ -58,6 +58,11 @@ contains
       end do
       call model%load%finalize()
 
+      if (deck%contact%present) then
+         call build_contact()
+         if (stat /= 0) return
+      end if
+
       model%dt_critical = model%stiff%dt_critical()
       if (deck%solver%dt > 0) then
          model%dt = deck%solver%dt
@@ -83,6 +88,20 @@ contains
       stat = 0
       errmsg = ''
    contains
+      subroutine build_contact()
+         integer, allocatable :: nodes(:)
+         associate (c => deck%contact)
+            call model%mesh%select_nodes(edge_id(c%edge), [c%xmin, c%xmax, c%ymin, c%ymax], nodes)
+            if (c%direction == 'cw') nodes = nodes(size(nodes):1:-1)
+            call model%contact%init(nodes, model%mesh%x, model%load%free, model%stiff%mass, &
+                                    c%obstacle_point, c%obstacle_normal, c%origin, c%multiplier, &
+                                    c%friction, c%threshold, c%threshold_abscissa(1:c%npoints), &
+                                    c%threshold_values(1:c%npoints), c%tresca_scope, c%method, &
+                                    c%penalty_stiffness, model%warnings, stat, errmsg)
+         end associate
+         if (stat /= 0) errmsg = deck%path//': '//errmsg
+      end subroutine build_contact
+
       subroutine add_edge_load(cfg, group, k)
          type(edge_load_cfg_t), intent(in) :: cfg
          character(len=*), intent(in) :: group

@@ -1,28 +1,451 @@
-!> Contact with a rigid straight obstacle: forward-increment Lagrange multipliers (SPEC 3, 4).
-!> (Skeleton: filled in by the contact issue.)
+!> Contact of the body with a rigid straight obstacle: forward-increment Lagrange multipliers
+!> (Carpenter, Taylor & Katona 1991) with P1 or P0 multipliers and Tresca friction
+!> (SPEC sections 3, 4, 6; the paper's (10)-(13) and (17)), or a penalty for comparison.
+!>
+!> Geometry is fixed and precomputed: contact nodes x_0..x_N ordered by abscissa, n = -nu (the
+!> body's outward normal), t = (-n2, n1), gaps g_i = (x_i - P).nu, weights w_i = integral of
+!> phi_i, thresholds s_i w_i, and for P0 the coupling D (tridiagonal) and the LCP matrix
+!> D M^-1 D^T (five bands). Forces: F_n, F_t per node; the force on the body is -F_n n - F_t t.
 module contact2d_contact
-   use contact2d_kinds, only: wp
+   use contact2d_kinds, only: wp, i8
+   use contact2d_strings, only: str
+   use contact2d_messages, only: messages_t
+   use contact2d_lcp, only: lcp_t
    implicit none
    private
-   public :: contact_t
+   public :: contact_t, status_separated, status_stick, status_slip
 
+   integer, parameter :: status_separated = 0, status_stick = 1, status_slip = 2
+   integer, parameter :: multiplier_p1 = 1, multiplier_p0 = 0
+   !> |F_t| >= (1 - slip_tol) s_i w_i counts as slip in the status (SPEC section 3).
+   real(wp), parameter :: slip_tol = 1.0e-8_wp
+
+   !> A candidate contact boundary and the multipliers of the last step.
    type :: contact_t
-      logical :: active = .false.
-      real(wp) :: friction_dissipation = 0
-      real(wp) :: normal_work = 0
-      real(wp) :: normal_total = 0
-      real(wp) :: tangential_total = 0
+      logical :: active = .false.           !< the model has contact
+      integer :: nc = 0                     !< number of contact nodes
+      integer :: multiplier = multiplier_p1 !< P1 or P0
+      logical :: penalty = .false.          !< method = 'penalty' (normal force k_p w_i max(d_i, 0))
+      real(wp) :: penalty_stiffness = 0     !< k_p [MPa/mm]
+      logical :: friction = .false.         !< Tresca friction
+      logical :: friction_in_contact_only = .false.   !< tresca_scope = 'contact'
+      real(wp) :: normal(2) = 0             !< n, outward normal of the body on Gamma_c
+      real(wp) :: tangent(2) = 0            !< t = (-n2, n1)
+      integer, allocatable :: node(:)       !< mesh node of each contact node (nc)
+      real(wp), allocatable :: abscissa(:)  !< curvilinear abscissa from O [mm]
+      real(wp), allocatable :: h(:)         !< segment lengths h_i = |x_(i+1) - x_i| (nc-1) [mm]
+      real(wp), allocatable :: weight(:)    !< w_i = integral of phi_i over Gamma_c [mm]
+      real(wp), allocatable :: gap(:)       !< initial gap g_i [mm]
+      real(wp), allocatable :: threshold(:) !< s_i [MPa]
+      real(wp), allocatable :: limit(:)     !< s_i w_i [N]
+      real(wp), allocatable :: mass(:)      !< lumped mass m_i [t]
+      logical, allocatable :: slides(:)     !< tangential dof free (friction applies)
+      ! P0: D (tridiagonal: dl(i) = D(i+1, i) = D(i, i+1), dd(i) = D(i, i)) and the LCP
+      real(wp), allocatable :: dd(:), dl(:)
+      type(lcp_t) :: lcp
+      ! state of the last step
+      real(wp), allocatable :: fn(:), ft(:)   !< nodal normal and tangential forces [N]
+      real(wp), allocatable :: mu(:)          !< P0 normal multiplier per dual cell [MPa]
+      real(wp), allocatable :: dtil(:), b(:)  !< work: trial gaps, LCP right-hand side
+      logical, allocatable :: stuck(:)        !< the node stuck in the last step
+      !> largest |tangential increment| of a stuck node since the last reset [mm] (should be 0)
+      real(wp) :: stick_increment_max = 0
+      real(wp) :: friction_dissipation = 0  !< [mJ]
+      real(wp) :: normal_work = 0           !< sum F_n,i Delta d_i [mJ]
+      real(wp) :: normal_total = 0          !< sum of F_n [N]
+      real(wp) :: tangential_total = 0      !< sum of F_t [N]
+      integer(i8) :: clock_ticks = 0        !< time spent in enforce (system_clock ticks)
+      integer :: stat = 0                   !< /= 0 after a failed LCP solve
+      character(len=:), allocatable :: errmsg
    contains
+      procedure :: init => contact_init
       procedure :: enforce => contact_enforce
+      procedure :: status => contact_status
+      procedure :: fields => contact_fields
+      procedure :: multiplier_name => contact_multiplier_name
+      procedure :: penetration => contact_penetration
    end type contact_t
 
 contains
 
+   !> Set up the contact boundary. nodes: candidate nodes ordered by abscissa; free(2, nnode):
+   !> 1 on free dofs. Nodes with a prescribed normal dof are dropped (warned); a candidate
+   !> boundary touching a Dirichlet boundary is accepted with a warning (inf-sup lost).
+   subroutine contact_init(this, candidates, x, free, mass, obstacle_point, obstacle_normal, origin, &
+                           multiplier, friction, threshold, profile_s, profile_values, tresca_scope, &
+                           method, penalty_stiffness, warnings, stat, errmsg)
+      class(contact_t), intent(out) :: this
+      integer, intent(in) :: candidates(:)
+      real(wp), intent(in) :: x(:, :), free(:, :), mass(:)
+      real(wp), intent(in) :: obstacle_point(2), obstacle_normal(2)
+      real(wp), intent(in) :: origin(2)          !< point O; huge() components: first node
+      character(len=*), intent(in) :: multiplier, friction, tresca_scope, method
+      real(wp), intent(in) :: threshold          !< uniform s [MPa] (when no profile)
+      real(wp), intent(in) :: profile_s(:), profile_values(:)  !< piecewise-linear s(abscissa)
+      real(wp), intent(in) :: penalty_stiffness
+      type(messages_t), intent(inout) :: warnings
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      logical, allocatable :: keep(:)
+      real(wp) :: nu(2), e(2), tol, lmax
+      integer :: i, k, nd, ntouch
+      character(len=:), allocatable :: ids
+
+      stat = 1
+      this%active = .true.
+      this%errmsg = ''
+      nu = obstacle_normal/norm2(obstacle_normal)
+      this%normal = -nu
+      this%tangent = [-this%normal(2), this%normal(1)]
+      if (size(candidates) == 0) then
+         errmsg = 'contact: the candidate boundary (edge and range) holds no node'
+         return
+      end if
+      lmax = maxval(maxval(x, dim=2) - minval(x, dim=2))
+      tol = 1.0e-12_wp*lmax
+
+      ! drop nodes whose normal displacement is prescribed; detect contact with Gamma_u
+      allocate (keep(size(candidates)))
+      ntouch = 0
+      ids = ''
+      do i = 1, size(candidates)
+         k = candidates(i)
+         keep(i) = .true.
+         if (any(free(:, k) == 0)) ntouch = ntouch + 1
+         if (any(free(:, k) == 0 .and. abs(this%normal) > 1.0e-12_wp)) then
+            keep(i) = .false.
+            if (len(ids) > 0) ids = ids//', '
+            ids = ids//str(k)
+         end if
+      end do
+      nd = count(.not. keep)
+      if (nd > 0) then
+         call warnings%add('contact: '//str(nd)//' candidate node(s) dropped from Gamma_c because their '// &
+                           'normal displacement is prescribed (node '//ids//'); their reaction is a Dirichlet reaction')
+      end if
+      if (ntouch > 0) then
+         call warnings%add('contact: the candidate boundary touches the Dirichlet boundary at '//str(ntouch)// &
+                           ' node(s): closure(Gamma_u) and closure(Gamma_c) meet, the inf-sup condition of the '// &
+                           'paper is lost and the multipliers may oscillate')
+      end if
+      this%node = pack(candidates, keep)
+      this%nc = size(this%node)
+      if (this%nc == 0) then
+         errmsg = 'contact: every candidate node has a prescribed normal displacement; Gamma_c is empty'
+         return
+      end if
+      ! the kept nodes must still form one chain of element edges
+      do i = 1, size(candidates) - 1
+         if (.not. keep(i) .and. any(keep(:i - 1)) .and. any(keep(i + 1:))) then
+            errmsg = 'contact: node '//str(candidates(i))//' inside the candidate boundary has a prescribed '// &
+                     'normal displacement; split the boundary or free that node'
+            return
+         end if
+      end do
+
+      associate (nc => this%nc)
+         allocate (this%abscissa(nc), this%h(max(nc - 1, 0)), this%weight(nc), this%gap(nc), &
+                   this%threshold(nc), this%limit(nc), this%mass(nc), this%slides(nc), &
+                   this%fn(nc), this%ft(nc), this%mu(nc), this%dtil(nc), this%b(nc), this%stuck(nc))
+         this%stuck = .false.
+         this%fn = 0
+         this%ft = 0
+         this%mu = 0
+         do i = 1, nc - 1
+            this%h(i) = norm2(x(:, this%node(i + 1)) - x(:, this%node(i)))
+         end do
+         ! weights: half of each adjacent segment (SPEC section 3)
+         this%weight = 0
+         do i = 1, nc - 1
+            this%weight(i) = this%weight(i) + 0.5_wp*this%h(i)
+            this%weight(i + 1) = this%weight(i + 1) + 0.5_wp*this%h(i)
+         end do
+         if (nc == 1) then
+            errmsg = 'contact: Gamma_c has a single node; it needs at least one element edge'
+            return
+         end if
+         ! abscissa from O along the chain
+         e = (x(:, this%node(2)) - x(:, this%node(1)))/this%h(1)
+         if (all(origin < huge(1.0_wp))) then
+            this%abscissa(1) = dot_product(x(:, this%node(1)) - origin, e)
+         else
+            this%abscissa(1) = 0
+         end if
+         do i = 2, nc
+            this%abscissa(i) = this%abscissa(i - 1) + this%h(i - 1)
+         end do
+         do i = 1, nc
+            k = this%node(i)
+            this%gap(i) = dot_product(x(:, k) - obstacle_point, nu)
+            this%mass(i) = mass(k)
+            this%slides(i) = all(free(:, k) == 1 .or. abs(this%tangent) <= 1.0e-12_wp)
+            if (this%gap(i) < -tol) then
+               errmsg = 'contact: node '//str(k)//' at ('//str(x(1, k))//', '//str(x(2, k))// &
+                        ') starts inside the obstacle (gap '//str(this%gap(i))//' mm)'
+               return
+            end if
+            this%gap(i) = max(this%gap(i), 0.0_wp)
+         end do
+      end associate
+
+      ! friction threshold s_i: uniform, or piecewise linear in the abscissa (held beyond the ends)
+      this%friction = friction == 'tresca'
+      this%friction_in_contact_only = tresca_scope == 'contact'
+      if (size(profile_s) > 0) then
+         do i = 1, this%nc
+            this%threshold(i) = interpolate(profile_s, profile_values, this%abscissa(i))
+         end do
+      else
+         this%threshold = threshold
+      end if
+      if (.not. this%friction) this%threshold = 0
+      this%limit = this%threshold*this%weight
+
+      this%penalty = method == 'penalty'
+      this%penalty_stiffness = penalty_stiffness
+      if (multiplier == 'P0') then
+         this%multiplier = multiplier_p0
+         call setup_p0(this)
+      else
+         this%multiplier = multiplier_p1
+      end if
+      stat = 0
+      errmsg = ''
+   end subroutine contact_init
+
+   pure real(wp) function interpolate(xs, ys, x) result(y)
+      real(wp), intent(in) :: xs(:), ys(:), x
+      integer :: k
+      if (x <= xs(1)) then
+         y = ys(1)
+      else if (x >= xs(size(xs))) then
+         y = ys(size(ys))
+      else
+         do k = 1, size(xs) - 1
+            if (x <= xs(k + 1)) exit
+         end do
+         y = ys(k) + (ys(k + 1) - ys(k))*(x - xs(k))/(xs(k + 1) - xs(k))
+      end if
+   end function interpolate
+
+   !> D_ij = integral over dual cell i of phi_j (SPEC section 3) and the LCP matrix D M^-1 D^T.
+   subroutine setup_p0(this)
+      type(contact_t), intent(inout) :: this
+      real(wp), allocatable :: ab(:, :)
+      integer :: i, j, k, nc
+      nc = this%nc
+      allocate (this%dd(nc), this%dl(nc - 1))
+      this%dd = 0
+      do i = 1, nc - 1
+         this%dd(i) = this%dd(i) + 3*this%h(i)/8
+         this%dd(i + 1) = this%dd(i + 1) + 3*this%h(i)/8
+         this%dl(i) = this%h(i)/8
+      end do
+      ! (D M^-1 D^T)(i, j) = sum_k D(i, k) D(j, k) / m_k, five bands; upper band storage, kd = 2
+      allocate (ab(3, nc))
+      ab = 0
+      do j = 1, nc
+         do i = max(1, j - 2), j
+            do k = max(1, j - 1), min(nc, i + 1)
+               ab(3 + i - j, j) = ab(3 + i - j, j) + d_entry(this, i, k)*d_entry(this, j, k)/this%mass(k)
+            end do
+         end do
+      end do
+      call this%lcp%init(ab, 2)
+   end subroutine setup_p0
+
+   pure real(wp) function d_entry(this, i, j)
+      type(contact_t), intent(in) :: this
+      integer, intent(in) :: i, j
+      if (i == j) then
+         d_entry = this%dd(i)
+      else if (abs(i - j) == 1) then
+         d_entry = this%dl(min(i, j))
+      else
+         d_entry = 0
+      end if
+   end function d_entry
+
+   !> y = D x (D symmetric tridiagonal).
+   pure subroutine d_apply(this, x, y)
+      type(contact_t), intent(in) :: this
+      real(wp), intent(in) :: x(:)
+      real(wp), intent(out) :: y(:)
+      integer :: i, nc
+      nc = this%nc
+      y = this%dd*x
+      do i = 1, nc - 1
+         y(i) = y(i) + this%dl(i)*x(i + 1)
+         y(i + 1) = y(i + 1) + this%dl(i)*x(i)
+      end do
+   end subroutine d_apply
+
+   !> The contact step (SPEC section 4, step 3). u^n, v^(n-1/2) and the trial u~ (unew) in;
+   !> unew becomes u^(n+1) = u~ + c M^-1 F_c at the contact nodes and fc(:, node) = F_c.
+   !> Energies use the centred increment (u^(n+1) - u^(n-1))/2 (SPEC section 6).
    subroutine contact_enforce(this, u, v, unew, mass, c, dt, fc)
       class(contact_t), intent(inout) :: this
-      real(wp), intent(in) :: u(:, :), v(:, :), mass(:), c, dt
-      real(wp), intent(inout) :: unew(:, :), fc(:, :)
-      fc = 0*u + 0*v + 0*unew + 0*c + 0*dt + 0*sum(mass)
-      this%normal_work = 0
+      real(wp), intent(in) :: u(:, :)      !< u^n [mm]
+      real(wp), intent(in) :: v(:, :)      !< v^(n-1/2) [mm/s]
+      real(wp), intent(inout) :: unew(:, :)  !< u~ in, u^(n+1) out [mm]
+      real(wp), intent(in) :: mass(:)      !< lumped masses (unused: contact keeps its own copy)
+      real(wp), intent(in) :: c            !< dt^2 / (1 + alpha dt / 2) [s^2]
+      real(wp), intent(in) :: dt           !< [s]
+      real(wp), intent(inout) :: fc(:, :)  !< contact force on the body [N]
+      integer(i8) :: t0, t1
+      integer :: i, k
+      real(wp) :: trial, lim, f(2), delta(2), fnsum, ftsum, wn, wf
+
+      call system_clock(t0)
+      associate (n => this%normal, t => this%tangent, nc => this%nc)
+         ! normal forces
+         if (this%penalty) then
+            ! explicit penalty on the gap at t_n: F_n = k_p w_i max(d_i^n, 0)
+            do i = 1, nc
+               k = this%node(i)
+               this%fn(i) = this%penalty_stiffness*this%weight(i)*max(dot_product(u(:, k), n) - this%gap(i), 0.0_wp)
+            end do
+         else if (this%multiplier == multiplier_p1) then
+            ! P1: Lambda_n,i = max(0, m_i d~_i / c), node by node
+            do i = 1, nc
+               k = this%node(i)
+               this%fn(i) = max(0.0_wp, this%mass(i)*(dot_product(unew(:, k), n) - this%gap(i))/c)
+            end do
+         else
+            ! P0: mu >= 0, (D M^-1 D^T) mu - D d~ / c >= 0, complementary; F_n = D mu
+            do i = 1, nc
+               this%dtil(i) = dot_product(unew(:, this%node(i)), n) - this%gap(i)
+            end do
+            call d_apply(this, this%dtil, this%b)
+            this%b = this%b/c
+            if (this%stat == 0) call this%lcp%solve(this%b, this%mu, this%stat, this%errmsg)
+            call d_apply(this, this%mu, this%fn)
+         end if
+         ! tangential forces: trial stick, else slip at the threshold (nodal Tresca)
+         if (this%friction) then
+            do i = 1, nc
+               k = this%node(i)
+               lim = this%limit(i)
+               if (this%friction_in_contact_only) then
+                  if (this%fn(i) <= 0) lim = 0
+               end if
+               if (.not. this%slides(i)) lim = 0
+               trial = this%mass(i)*dot_product(unew(:, k) - u(:, k), t)/c
+               this%ft(i) = sign(min(abs(trial), lim), trial)
+               this%stuck(i) = abs(trial) < lim
+            end do
+         end if
+         ! apply, and account the work on the centred increment
+         fnsum = 0
+         ftsum = 0
+         wn = 0
+         wf = 0
+         do i = 1, nc
+            k = this%node(i)
+            f = -this%fn(i)*n - this%ft(i)*t
+            unew(:, k) = unew(:, k) + (c/this%mass(i))*f
+            fc(:, k) = f
+            if (this%stuck(i)) this%stick_increment_max = &
+               max(this%stick_increment_max, abs(dot_product(unew(:, k) - u(:, k), t)))
+            delta = 0.5_wp*(unew(:, k) - u(:, k)) + 0.5_wp*dt*v(:, k)
+            wn = wn + this%fn(i)*dot_product(delta, n)
+            wf = wf + this%ft(i)*dot_product(delta, t)
+            fnsum = fnsum + this%fn(i)
+            ftsum = ftsum + this%ft(i)
+         end do
+         this%normal_work = this%normal_work + wn
+         this%friction_dissipation = this%friction_dissipation + wf
+         this%normal_total = fnsum
+         this%tangential_total = ftsum
+      end associate
+      if (.false.) fc(1, 1) = mass(1)
+      call system_clock(t1)
+      this%clock_ticks = this%clock_ticks + (t1 - t0)
    end subroutine contact_enforce
+
+   !> Status per contact node (SPEC section 3): 0 separated, 1 stick, 2 slip.
+   subroutine contact_status(this, status)
+      class(contact_t), intent(in) :: this
+      integer, intent(out) :: status(:)
+      integer :: i
+      logical :: touching
+      do i = 1, this%nc
+         if (this%multiplier == multiplier_p0 .and. .not. this%penalty) then
+            touching = this%mu(i) > 0
+         else
+            touching = this%fn(i) > 0
+         end if
+         if (.not. touching) then
+            status(i) = status_separated
+         else if (.not. this%friction) then
+            status(i) = status_slip
+         else if (this%threshold(i) > 0 .and. abs(this%ft(i)) >= (1 - slip_tol)*this%limit(i)) then
+            status(i) = status_slip
+         else
+            status(i) = status_stick
+         end if
+      end do
+   end subroutine contact_status
+
+   !> Multiplier fields (SPEC section 3): P1 (and penalty) per node, lambda = M_c^-1 F (consistent
+   !> 1D mass of Gamma_c, LAPACK dptsv); P0 per dual cell, mu_n and mu_t = D^-1 F_t.
+   subroutine contact_fields(this, pressure, shear, stat)
+      class(contact_t), intent(in) :: this
+      real(wp), intent(out) :: pressure(:), shear(:)
+      integer, intent(out) :: stat
+      real(wp) :: diag(this%nc), off(max(this%nc - 1, 1)), rhs(this%nc, 2)
+      integer :: i, nc
+      external :: dptsv
+      nc = this%nc
+      if (this%multiplier == multiplier_p0 .and. .not. this%penalty) then
+         diag = this%dd
+         off(1:nc - 1) = this%dl
+         rhs(:, 1) = this%ft
+         call dptsv(nc, 1, diag, off, rhs, nc, stat)
+         pressure = this%mu
+         shear = rhs(:, 1)
+      else
+         diag = 0
+         do i = 1, nc - 1
+            diag(i) = diag(i) + this%h(i)/3
+            diag(i + 1) = diag(i + 1) + this%h(i)/3
+            off(i) = this%h(i)/6
+         end do
+         rhs(:, 1) = this%fn
+         rhs(:, 2) = this%ft
+         call dptsv(nc, 2, diag, off, rhs, nc, stat)
+         pressure = rhs(:, 1)
+         shear = rhs(:, 2)
+      end if
+   end subroutine contact_fields
+
+   !> 'P1', 'P0' or 'penalty'.
+   function contact_multiplier_name(this) result(name)
+      class(contact_t), intent(in) :: this
+      character(len=:), allocatable :: name
+      if (this%penalty) then
+         name = 'penalty'
+      else if (this%multiplier == multiplier_p0) then
+         name = 'P0'
+      else
+         name = 'P1'
+      end if
+   end function contact_multiplier_name
+
+   !> Largest penetration: per node for P1 and penalty, max((D d)_i, 0) per dual cell for P0 [mm].
+   real(wp) function contact_penetration(this, u) result(pen)
+      class(contact_t), intent(in) :: this
+      real(wp), intent(in) :: u(:, :)
+      real(wp) :: d(this%nc), dd(this%nc)
+      integer :: i
+      do i = 1, this%nc
+         d(i) = dot_product(u(:, this%node(i)), this%normal) - this%gap(i)
+      end do
+      if (this%multiplier == multiplier_p0 .and. .not. this%penalty) then
+         call d_apply(this, d, dd)
+         pen = max(maxval(dd/this%weight), 0.0_wp)   ! per unit cell length: a mean gap [mm]
+      else
+         pen = max(maxval(d), 0.0_wp)
+      end if
+   end function contact_penetration
 end module contact2d_contact

@@ -100,6 +100,8 @@ module contact2d_deck
       integer :: history_interval = 10    !< steps between history samples, >= 1
       logical :: xdmf = .true.            !< write the XDMF sidecar <output>.xmf for ParaView
       logical :: progress = .true.        !< progress line when the terminal is interactive
+      real(wp) :: snapshot_times(max_stages) = unset  !< times of /fields/<step> snapshots [s]
+      integer :: nsnapshot = 0            !< derived: number of snapshot times
    end type output_cfg_t
 
    !> A whole deck after overrides and validation.
@@ -649,9 +651,11 @@ contains
       character(len=:), allocatable, intent(inout) :: errmsg
       integer :: history_interval, ios, i
       logical :: xdmf, progress
+      real(wp) :: snapshot_times(max_stages)
       character(len=256) :: msg
-      namelist /output/ history_interval, xdmf, progress
+      namelist /output/ history_interval, xdmf, progress, snapshot_times
       history_interval = cfg%history_interval; xdmf = cfg%xdmf; progress = cfg%progress
+      snapshot_times = cfg%snapshot_times
       if (size(blk) > 0) then
          read (blk, nml=output, iostat=ios, iomsg=msg)
          if (read_failed(ios, msg, where, stat, errmsg)) return
@@ -661,6 +665,7 @@ contains
          if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
       cfg%history_interval = history_interval; cfg%xdmf = xdmf; cfg%progress = progress
+      cfg%snapshot_times = snapshot_times
    end subroutine read_output
 
    ! ---- validation -------------------------------------------------------------------------
@@ -753,10 +758,24 @@ contains
          end if
       end associate
 
-      if (deck%output%history_interval < 1) then
-         errmsg = 'output:history_interval = '//str(deck%output%history_interval)//' must be >= 1'
-         return
-      end if
+      associate (o => deck%output)
+         if (o%history_interval < 1) then
+            errmsg = 'output:history_interval = '//str(o%history_interval)//' must be >= 1'
+            return
+         end if
+         o%nsnapshot = count(o%snapshot_times /= unset)
+         if (any(o%snapshot_times(o%nsnapshot + 1:) /= unset)) then
+            errmsg = 'output:snapshot_times must be given from the first entry on'
+            return
+         end if
+         do i = 1, o%nsnapshot
+            if (.not. o%snapshot_times(i) > 0 .or. &
+                (i > 1 .and. .not. o%snapshot_times(i) > o%snapshot_times(max(i - 1, 1)))) then
+               errmsg = 'output:snapshot_times must be > 0 and increase strictly (entry '//str(i)//')'
+               return
+            end if
+         end do
+      end associate
 
       last_stage = 0
       do i = 1, size(deck%dirichlet)
@@ -995,7 +1014,10 @@ contains
                 kv('power_iterations', str(s%power_iterations))//'/'//nl
       end associate
       text = text//'&output'//nl//kv('history_interval', str(deck%output%history_interval))// &
-             kv('xdmf', str(deck%output%xdmf))//kv('progress', str(deck%output%progress))//'/'//nl
+             kv('xdmf', str(deck%output%xdmf))//kv('progress', str(deck%output%progress))
+      if (deck%output%nsnapshot > 0) text = text//kv('snapshot_times', &
+                                                     reals(deck%output%snapshot_times(1:deck%output%nsnapshot)))
+      text = text//'/'//nl
    contains
       function kv(key, value) result(line)
          character(len=*), intent(in) :: key, value

@@ -18,12 +18,12 @@ module contact2d_output
    public :: output_t, history_names
 
    !> History series: SPEC section 8 names first, then additions (docs/output.md).
-   character(len=24), parameter :: history_names(13) = [character(len=24) :: &
+   character(len=24), parameter :: history_names(14) = [character(len=24) :: &
       'time', 'kinetic_energy', 'strain_energy', 'external_work', 'friction_dissipation', &
       'damping_dissipation', 'energy_balance_error', 'residual', 'normal_force_total', &
-      'tangential_force_total', 'normal_contact_work', 'step', 'damping_alpha']
-   character(len=8), parameter :: history_units(13) = [character(len=8) :: &
-      's', 'mJ', 'mJ', 'mJ', 'mJ', 'mJ', '1', '1', 'N', 'N', 'mJ', '1', '1/s']
+      'tangential_force_total', 'normal_contact_work', 'step', 'damping_alpha', 'stick_increment_max']
+   character(len=8), parameter :: history_units(14) = [character(len=8) :: &
+      's', 'mJ', 'mJ', 'mJ', 'mJ', 'mJ', '1', '1', 'N', 'N', 'mJ', '1', '1/s', 'mm']
    integer, parameter :: nseries = size(history_names)
    integer, parameter :: flush_samples = 256
    real(wp), parameter :: flush_seconds = 2.0_wp
@@ -33,6 +33,7 @@ module contact2d_output
       type(h5file_t) :: file
       type(h5series_t) :: series(nseries)
       integer(hid_t) :: history = -1
+      integer(hid_t) :: fields = -1
       real(wp) :: buffer(nseries, flush_samples) = 0
       integer :: nbuf = 0
       integer(i8) :: last_flush_clock = 0
@@ -41,6 +42,7 @@ module contact2d_output
       procedure :: open => output_open
       procedure :: sample => output_sample
       procedure :: flush_history => output_flush_history
+      procedure :: snapshot => output_snapshot
       procedure :: finish => output_finish
    end type output_t
 
@@ -69,7 +71,7 @@ contains
       call this%file%attr(root, 'effective_deck', deck%effective)
       call this%file%attr(root, 'units', 'length mm, force N, stress MPa, mass t, time s, energy mJ')
       if (model%contact%active) then
-         call this%file%attr(root, 'multiplier', 'P1')
+         call this%file%attr(root, 'multiplier', model%contact%multiplier_name())
       else
          call this%file%attr(root, 'multiplier', 'none')
       end if
@@ -88,6 +90,20 @@ contains
       call this%file%dataset(g, 'mass', model%stiff%mass, 't')
       call this%file%close_group(g)
 
+      if (model%contact%active) then
+         associate (c => model%contact)
+            g = this%file%group(root, 'contact')
+            call this%file%dataset(g, 'nodes', c%node, '1')
+            call this%file%dataset(g, 'abscissa', c%abscissa, 'mm')
+            call this%file%dataset(g, 'weight', c%weight, 'mm')
+            call this%file%dataset(g, 'gap', c%gap, 'mm')
+            call this%file%dataset(g, 'threshold', c%threshold, 'MPa')
+            call this%file%attr(g, 'normal', 'outward normal of the body (n_x, n_y) = ('// &
+                                str(c%normal(1))//', '//str(c%normal(2))//')')
+            call this%file%attr(g, 'friction', merge('tresca      ', 'frictionless', c%friction))
+            call this%file%close_group(g)
+         end associate
+      end if
       this%history = this%file%group(root, 'history')
       do k = 1, nseries
          call this%series(k)%create(this%file, this%history, trim(history_names(k)), &
@@ -104,7 +120,7 @@ contains
    subroutine output_sample(this, solver, model, residual)
       class(output_t), intent(inout) :: this
       type(explicit_t), intent(in) :: solver
-      type(model_t), intent(in) :: model
+      type(model_t), intent(inout) :: model
       real(wp), intent(in) :: residual
       integer(i8) :: now, rate
       this%nbuf = this%nbuf + 1
@@ -113,13 +129,34 @@ contains
                                       c%friction_dissipation, solver%damping_dissipation, &
                                       solver%balance_error(c%friction_dissipation, c%normal_work), &
                                       residual, c%normal_total, c%tangential_total, c%normal_work, &
-                                      real(solver%step, wp), solver%alpha]
+                                      real(solver%step, wp), solver%alpha, c%stick_increment_max]
+         c%stick_increment_max = 0
       end associate
       call system_clock(now, rate)
       if (this%nbuf == flush_samples .or. real(now - this%last_flush_clock, wp) > flush_seconds*rate) then
          call this%flush_history()
       end if
    end subroutine output_sample
+
+   !> /fields/<step>: a snapshot of the displacement (and contact forces) at this step.
+   subroutine output_snapshot(this, solver, model)
+      class(output_t), intent(inout) :: this
+      type(explicit_t), intent(in) :: solver
+      type(model_t), intent(in) :: model
+      integer(hid_t) :: fields, g
+      if (this%fields < 0) this%fields = this%file%group(this%file%id, 'fields')
+      fields = this%fields
+      g = this%file%group(fields, str(solver%step))
+      call this%file%attr(g, 'time', solver%time)
+      call this%file%attr(g, 'step', int(solver%step))
+      call this%file%dataset(g, 'displacement', solver%u, 'mm')
+      if (model%contact%active) then
+         call this%file%dataset(g, 'contact_normal_force', model%contact%fn, 'N')
+         call this%file%dataset(g, 'contact_tangential_force', model%contact%ft, 'N')
+      end if
+      call this%file%close_group(g)
+      call this%file%flush()
+   end subroutine output_snapshot
 
    !> Append the buffered samples and flush the file.
    subroutine output_flush_history(this)
@@ -155,6 +192,7 @@ contains
          call this%series(k)%close(this%file)
       end do
       call this%file%close_group(this%history)
+      call this%file%close_group(this%fields)
       root = this%file%id
       call this%file%attr(root, 'steps', int(solver%step))
       call this%file%attr(root, 'converged', merge(1, 0, converged))
@@ -177,6 +215,7 @@ contains
       call this%file%dataset(g, 'velocity', solver%v, 'mm/s')
       call this%file%dataset(g, 'stress', stress, 'MPa')
       call this%file%dataset(g, 'reaction', reaction, 'N')
+      if (model%contact%active) call write_final_contact(this, g, model)
       call this%file%close_group(g)
       call this%file%close()
       stat = this%file%stat
@@ -187,6 +226,27 @@ contains
       end if
       if (this%xdmf) call write_xdmf(this%file%path, model, stat, errmsg)
    end subroutine output_finish
+
+   !> /final/contact: nodal forces, multiplier fields and status (SPEC section 8).
+   subroutine write_final_contact(this, final, model)
+      type(output_t), intent(inout) :: this
+      integer(hid_t), intent(in) :: final
+      type(model_t), intent(in) :: model
+      integer(hid_t) :: g
+      real(wp) :: pressure(model%contact%nc), shear(model%contact%nc)
+      integer :: status(model%contact%nc), info
+      associate (c => model%contact)
+         call c%fields(pressure, shear, info)
+         call c%status(status)
+         g = this%file%group(final, 'contact')
+         call this%file%dataset(g, 'normal_force', c%fn, 'N')
+         call this%file%dataset(g, 'tangential_force', c%ft, 'N')
+         call this%file%dataset(g, 'pressure', pressure, 'MPa')
+         call this%file%dataset(g, 'shear', shear, 'MPa')
+         call this%file%dataset(g, 'status', status, '0 separated, 1 stick, 2 slip')
+         call this%file%close_group(g)
+      end associate
+   end subroutine write_final_contact
 
    !> <output>.xmf next to the HDF5 file: mesh, final displacement, velocity and stress.
    subroutine write_xdmf(h5path, model, stat, errmsg)

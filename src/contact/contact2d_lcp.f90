@@ -1,0 +1,203 @@
+!> Linear complementarity problems with a symmetric positive definite band matrix (SPEC 4, P0):
+!>     find mu >= 0 with w = A mu - b >= 0 and mu^T w = 0.
+!>
+!> Primal-dual active set (semismooth Newton) iterations, warm-started from the previous active
+!> set; each iteration solves A_SS mu_S = b_S with a banded Cholesky (LAPACK dpbtrf/dpbtrs) of the
+!> active submatrix, whose factor is kept while the set does not change. If the block iteration
+!> cycles (A is not an M-matrix), Murty's least-index principal pivoting takes over; it ends in
+!> finitely many pivots for any P-matrix, so for SPD A. The result satisfies mu >= 0 exactly,
+!> w_S = 0 to round-off and w >= -tol on the inactive set, tol = 1e-14 max|b|.
+module contact2d_lcp
+   use contact2d_kinds, only: wp
+   implicit none
+   private
+   public :: lcp_t
+
+   integer, parameter :: max_block_iterations = 50
+   real(wp), parameter :: rel_tol = 1.0e-14_wp
+
+   !> An LCP matrix in LAPACK upper band storage with its last factorization.
+   type :: lcp_t
+      integer :: n = 0                      !< size
+      integer :: kd = 0                     !< number of super-diagonals
+      real(wp), allocatable :: ab(:, :)     !< A in band storage: ab(kd+1+i-j, j) = A(i, j), i <= j
+      logical, allocatable :: active(:)     !< active set of the last solve (warm start)
+      ! factorization cache
+      logical, allocatable :: fact_set(:)   !< the set the factor belongs to
+      logical :: have_factor = .false.
+      integer :: na = 0                     !< size of the factored set
+      integer, allocatable :: idx(:)        !< its indices, increasing
+      real(wp), allocatable :: fab(:, :)    !< its band Cholesky factor
+      real(wp), allocatable :: rhs(:), w(:)
+      ! statistics
+      integer :: iterations = 0             !< iterations of the last solve
+      integer :: factorizations = 0         !< factorizations so far
+      integer :: pivoting_solves = 0        !< solves that needed Murty's method
+   contains
+      procedure :: init => lcp_init
+      procedure :: solve => lcp_solve
+      procedure :: matvec => lcp_matvec
+      procedure :: entry => lcp_entry
+   end type lcp_t
+
+contains
+
+   !> Store A (band storage, kd super-diagonals); the warm start begins with all inactive.
+   subroutine lcp_init(this, ab, kd)
+      class(lcp_t), intent(out) :: this
+      real(wp), intent(in) :: ab(:, :)      !< (kd+1, n)
+      integer, intent(in) :: kd
+      this%n = size(ab, 2)
+      this%kd = kd
+      this%ab = ab
+      allocate (this%active(this%n), this%fact_set(this%n), this%idx(this%n), &
+                this%fab(kd + 1, this%n), this%rhs(this%n), this%w(this%n))
+      this%active = .false.
+      this%fact_set = .false.
+   end subroutine lcp_init
+
+   !> A(i, j) (zero outside the band).
+   pure real(wp) function lcp_entry(this, i, j) result(a)
+      class(lcp_t), intent(in) :: this
+      integer, intent(in) :: i, j
+      if (abs(i - j) > this%kd) then
+         a = 0
+      else if (i <= j) then
+         a = this%ab(this%kd + 1 + i - j, j)
+      else
+         a = this%ab(this%kd + 1 + j - i, i)
+      end if
+   end function lcp_entry
+
+   !> y = A x.
+   pure subroutine lcp_matvec(this, x, y)
+      class(lcp_t), intent(in) :: this
+      real(wp), intent(in) :: x(:)
+      real(wp), intent(out) :: y(:)
+      integer :: i, j
+      do i = 1, this%n
+         y(i) = 0
+         do j = max(1, i - this%kd), min(this%n, i + this%kd)
+            y(i) = y(i) + this%entry(i, j)*x(j)
+         end do
+      end do
+   end subroutine lcp_matvec
+
+   !> Solve the LCP for b. stat /= 0 (with a message) if LAPACK fails or no method converges.
+   subroutine lcp_solve(this, b, mu, stat, errmsg)
+      class(lcp_t), intent(inout) :: this
+      real(wp), intent(in) :: b(:)
+      real(wp), intent(out) :: mu(:)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      real(wp) :: tol
+      integer :: it, i, flip, max_pivots
+      logical :: changed
+
+      stat = 0
+      tol = rel_tol*max(maxval(abs(b)), tiny(1.0_wp))
+      this%iterations = 0
+      ! primal-dual active set
+      do it = 1, max_block_iterations
+         this%iterations = it
+         call solve_on_set(this, b, mu, stat, errmsg)
+         if (stat /= 0) return
+         changed = .false.
+         do i = 1, this%n
+            if (this%active(i)) then
+               if (mu(i) <= 0) then
+                  this%active(i) = .false.
+                  changed = .true.
+               end if
+            else if (this%w(i) < -tol) then
+               this%active(i) = .true.
+               changed = .true.
+            end if
+         end do
+         if (.not. changed) return
+      end do
+      ! cycling: Murty's least-index principal pivoting (finite for P-matrices)
+      this%pivoting_solves = this%pivoting_solves + 1
+      max_pivots = 20*this%n + 200
+      do it = 1, max_pivots
+         this%iterations = this%iterations + 1
+         call solve_on_set(this, b, mu, stat, errmsg)
+         if (stat /= 0) return
+         flip = 0
+         do i = 1, this%n
+            if (this%active(i)) then
+               if (mu(i) <= 0) flip = i
+            else if (this%w(i) < -tol) then
+               flip = i
+            end if
+            if (flip /= 0) exit
+         end do
+         if (flip == 0) return
+         this%active(flip) = .not. this%active(flip)
+      end do
+      stat = 1
+      errmsg = 'P0 contact LCP: no convergence after '//itoa(this%iterations)// &
+               ' active-set iterations (n = '//itoa(this%n)//')'
+   end subroutine lcp_solve
+
+   !> mu on the current active set (zero elsewhere) and w = A mu - b.
+   subroutine solve_on_set(this, b, mu, stat, errmsg)
+      type(lcp_t), intent(inout) :: this
+      real(wp), intent(in) :: b(:)
+      real(wp), intent(out) :: mu(:)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      integer :: p, q, info
+      external :: dpbtrf, dpbtrs
+
+      stat = 0
+      mu = 0
+      if (.not. (this%have_factor .and. all(this%fact_set .eqv. this%active))) then
+         this%na = 0
+         do p = 1, this%n
+            if (this%active(p)) then
+               this%na = this%na + 1
+               this%idx(this%na) = p
+            end if
+         end do
+         ! band of the active submatrix: indices keep their order, so the band width stays kd
+         this%fab = 0
+         do q = 1, this%na
+            do p = max(1, q - this%kd), q
+               this%fab(this%kd + 1 + p - q, q) = this%entry(this%idx(p), this%idx(q))
+            end do
+         end do
+         if (this%na > 0) then
+            call dpbtrf('U', this%na, this%kd, this%fab, this%kd + 1, info)
+            if (info /= 0) then
+               stat = 1
+               errmsg = 'P0 contact LCP: LAPACK dpbtrf failed (info = '//itoa(info)//')'
+               return
+            end if
+         end if
+         this%fact_set = this%active
+         this%have_factor = .true.
+         this%factorizations = this%factorizations + 1
+      end if
+      if (this%na > 0) then
+         this%rhs(1:this%na) = b(this%idx(1:this%na))
+         call dpbtrs('U', this%na, this%kd, 1, this%fab, this%kd + 1, this%rhs, this%n, info)
+         if (info /= 0) then
+            stat = 1
+            errmsg = 'P0 contact LCP: LAPACK dpbtrs failed (info = '//itoa(info)//')'
+            return
+         end if
+         mu(this%idx(1:this%na)) = this%rhs(1:this%na)
+      end if
+      call this%matvec(mu, this%w)
+      this%w = this%w - b
+   end subroutine solve_on_set
+
+   pure function itoa(i) result(s)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function itoa
+end module contact2d_lcp
