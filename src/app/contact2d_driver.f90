@@ -237,6 +237,36 @@ contains
       flush (output_unit)
    end subroutine progress_line
 
+   !> Contact lines of the summary: status counts, extent, pressure sign, penetration.
+   subroutine contact_summary(model, solver)
+      type(model_t), intent(in) :: model
+      type(explicit_t), intent(in) :: solver
+      integer :: status(model%contact%nc), info, nneg
+      real(wp) :: pressure(model%contact%nc), shear(model%contact%nc)
+      associate (c => model%contact)
+         call c%status(status)
+         call c%fields(pressure, shear, info)
+         write (output_unit, '(a)') ' contact             '//c%multiplier_name()//', '//str(c%nc)//' nodes: '// &
+            str(count(status == 1))//' stick, '//str(count(status == 2))//' slip, '// &
+            str(count(status == 0))//' separated; total F_n = '//sci(c%normal_total)//' N, F_t = '// &
+            sci(c%tangential_total)//' N'
+         if (any(status > 0)) then
+            write (output_unit, '(a)') '                     in contact from abscissa '// &
+               sci(minval(c%abscissa, mask=status > 0))//' to '//sci(maxval(c%abscissa, mask=status > 0))//' mm'
+         end if
+         nneg = count(pressure < 0)
+         write (output_unit, '(a)', advance='no') ' contact pressure    max '//sci(maxval(pressure))//' MPa'
+         if (nneg > 0) then
+            write (output_unit, '(a)') '; negative at '//str(nneg)//' node(s), min '//sci(minval(pressure))// &
+               ' MPa (recovered multiplier, reported as is)'
+         else
+            write (output_unit, '(a)') '; nowhere negative'
+         end if
+         write (output_unit, '(a)') ' penetration         '//sci(c%penetration(solver%u))//' mm (max'// &
+            merge(' per dual cell)', ' per node)     ', c%multiplier_name() == 'P0')
+      end associate
+   end subroutine contact_summary
+
    subroutine summary(model, deck, solver, path, converged, status, residual, wall, timings)
       type(model_t), intent(in) :: model
       type(deck_t), intent(in) :: deck
@@ -260,6 +290,7 @@ contains
          write (output_unit, '(a)') ' converged           '//conv
          write (output_unit, '(a)') ' energy balance      '//sci(solver%balance_error(c%friction_dissipation, c%normal_work))// &
             ' (relative error; W_ext = '//sci(solver%external_work)//' mJ)'
+         if (c%active) call contact_summary(model, solver)
          write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s (set-up '//fixed(timings(1), 3)// &
             ', steps '//fixed(timings(2), 3)//', contact '//fixed(timings(3), 3)//', output '//fixed(timings(4), 3)//')'
          write (output_unit, '(a)') ' element-steps / s   '//sci(rate)

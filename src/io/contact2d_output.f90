@@ -34,7 +34,7 @@ module contact2d_output
       type(h5series_t) :: series(nseries)
       integer(hid_t) :: history = -1
       integer(hid_t) :: fields = -1
-      real(wp) :: buffer(nseries, flush_samples) = 0
+      real(wp) :: buffer(flush_samples, nseries) = 0   !< one contiguous column per series
       integer :: nbuf = 0
       integer(i8) :: last_flush_clock = 0
       logical :: xdmf = .true.
@@ -125,7 +125,7 @@ contains
       integer(i8) :: now, rate
       this%nbuf = this%nbuf + 1
       associate (c => model%contact)
-         this%buffer(:, this%nbuf) = [solver%time, solver%kinetic, solver%strain, solver%external_work, &
+         this%buffer(this%nbuf, :) = [solver%time, solver%kinetic, solver%strain, solver%external_work, &
                                       c%friction_dissipation, solver%damping_dissipation, &
                                       solver%balance_error(c%friction_dissipation, c%normal_work), &
                                       residual, c%normal_total, c%tangential_total, c%normal_work, &
@@ -164,7 +164,7 @@ contains
       integer :: k
       if (this%nbuf > 0) then
          do k = 1, nseries
-            call this%series(k)%append(this%file, this%buffer(k, 1:this%nbuf))
+            call this%series(k)%append(this%file, this%buffer(1:this%nbuf, k))
          end do
          this%nbuf = 0
       end if
