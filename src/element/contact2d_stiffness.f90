@@ -15,14 +15,32 @@ module contact2d_stiffness
    !> How many known shapes a new element is compared with before it gets its own matrix.
    integer, parameter :: shape_search = 8
 
+   !> Offsets (i, j) of the four local nodes of a structured element from its bottom-left node.
+   integer, parameter :: off(2, 4) = reshape([0, 0, 1, 0, 1, 1, 0, 1], [2, 4])
+
    !> Precomputed element matrices and nodal masses of a mesh.
+   !>
+   !> K u is a gather over nodes (each node sums the rows of its elements' matrices), so it is
+   !> race-free and gives the same bits for any number of OpenMP threads. A structured mesh of
+   !> equal elements uses the assembled 9-point stencil of 2 x 2 blocks on interior nodes.
    type :: stiffness_t
       integer :: nshape = 0
+      integer :: nnode = 0
       real(wp), allocatable :: ke(:, :, :)     !< element stiffness per shape (8, 8, nshape) [N/mm]
       integer, allocatable :: shape_of(:)      !< shape id of each element (nel)
       integer, allocatable :: conn(:, :)       !< copy of the connectivity (4, nel)
       real(wp), allocatable :: mass(:)         !< lumped nodal mass (nnode) [t]
       real(wp) :: omega2_element = 0           !< largest element omega^2 [1/s^2]
+      ! rows of K in block-CSR form (2 x 2 blocks): every node of a general mesh, the boundary
+      ! nodes of a structured one
+      integer, allocatable :: row_node(:)      !< node of each block row
+      integer, allocatable :: row_start(:)     !< first block of each row, (nrow + 1)
+      integer, allocatable :: blk_col(:)       !< node of each block
+      real(wp), allocatable :: blk(:, :, :)    !< (2, 2, nblock) [N/mm]
+      ! structured mesh of equal elements
+      logical :: structured = .false.
+      integer :: nx = 0, ny = 0
+      real(wp) :: stencil(2, 2, -1:1, -1:1) = 0   !< interior stencil blocks [N/mm]
    contains
       procedure :: init => stiffness_init
       procedure :: apply => stiffness_apply
@@ -94,7 +112,117 @@ contains
          end if
          this%omega2_element = max(this%omega2_element, omega2)
       end do
+      this%nnode = mesh%nnode
+      this%structured = mesh%nx > 0 .and. this%nshape == 1
+      if (this%structured) then
+         this%nx = mesh%nx
+         this%ny = mesh%ny
+         call build_stencil(this)
+         call build_rows(this, perimeter(mesh%nx, mesh%ny))
+      else
+         call build_rows(this, [(e, e=1, mesh%nnode)])
+      end if
    end subroutine stiffness_init
+
+   !> Block-CSR rows of K for the given nodes: K(n, m) = sum over the elements holding n and m of
+   !> the 2 x 2 block of K_e, columns in increasing node order.
+   subroutine build_rows(this, rows)
+      type(stiffness_t), intent(inout) :: this
+      integer, intent(in) :: rows(:)
+      integer, allocatable :: adj_start(:), adj_elem(:), fill(:), cols(:)
+      real(wp), allocatable :: blocks(:, :, :)
+      integer :: e, a, b, n, m, r, k, nel, ncol, pos, nb
+      logical, allocatable :: is_row(:)
+
+      nel = size(this%conn, 2)
+      ! node -> elements
+      allocate (adj_start(this%nnode + 1), adj_elem(4*nel), fill(this%nnode), is_row(this%nnode))
+      adj_start = 0
+      do e = 1, nel
+         do a = 1, 4
+            adj_start(this%conn(a, e) + 1) = adj_start(this%conn(a, e) + 1) + 1
+         end do
+      end do
+      adj_start(1) = 1
+      do n = 1, this%nnode
+         adj_start(n + 1) = adj_start(n + 1) + adj_start(n)
+      end do
+      fill = adj_start(1:this%nnode)
+      do e = 1, nel
+         do a = 1, 4
+            n = this%conn(a, e)
+            adj_elem(fill(n)) = e
+            fill(n) = fill(n) + 1
+         end do
+      end do
+      is_row = .false.
+      is_row(rows) = .true.
+      ! at most 16 blocks per row (four elements of four nodes) before merging duplicates
+      allocate (cols(16), blocks(2, 2, 16))
+      allocate (this%row_node(size(rows)), this%row_start(size(rows) + 1), &
+                this%blk_col(16*size(rows)), this%blk(2, 2, 16*size(rows)))
+      nb = 0
+      do r = 1, size(rows)
+         n = rows(r)
+         this%row_node(r) = n
+         this%row_start(r) = nb + 1
+         ncol = 0
+         do k = adj_start(n), adj_start(n + 1) - 1
+            e = adj_elem(k)
+            a = findloc(this%conn(:, e), n, dim=1)
+            do b = 1, 4
+               m = this%conn(b, e)
+               pos = 0
+               if (ncol > 0) pos = findloc(cols(1:ncol), m, dim=1)
+               if (pos == 0) then
+                  ncol = ncol + 1
+                  cols(ncol) = m
+                  blocks(:, :, ncol) = 0
+                  pos = ncol
+               end if
+               blocks(:, :, pos) = blocks(:, :, pos) + this%ke(2*a - 1:2*a, 2*b - 1:2*b, this%shape_of(e))
+            end do
+         end do
+         ! columns in increasing order: a fixed summation order
+         do k = 1, ncol
+            pos = minloc(cols(1:ncol), dim=1)
+            nb = nb + 1
+            this%blk_col(nb) = cols(pos)
+            this%blk(:, :, nb) = blocks(:, :, pos)
+            cols(pos) = huge(1)
+         end do
+      end do
+      this%row_start(size(rows) + 1) = nb + 1
+      this%blk_col = this%blk_col(1:nb)
+      this%blk = this%blk(:, :, 1:nb)
+   end subroutine build_rows
+
+   !> Node ids of the boundary of a structured (nx, ny) mesh.
+   pure function perimeter(nx, ny) result(nodes)
+      integer, intent(in) :: nx, ny
+      integer, allocatable :: nodes(:)
+      integer :: i, j
+      nodes = [integer ::]
+      do j = 0, ny
+         do i = 0, nx
+            if (i == 0 .or. i == nx .or. j == 0 .or. j == ny) nodes = [nodes, i + (nx + 1)*j + 1]
+         end do
+      end do
+   end function perimeter
+
+   !> Interior stencil: S(d) = sum over the four elements around a node of the block K_ab of
+   !> the element matrix, with d = offset(b) - offset(a).
+   subroutine build_stencil(this)
+      type(stiffness_t), intent(inout) :: this
+      integer :: a, b, d(2)
+      this%stencil = 0
+      do a = 1, 4
+         do b = 1, 4
+            d = off(:, b) - off(:, a)
+            this%stencil(:, :, d(1), d(2)) = this%stencil(:, :, d(1), d(2)) + this%ke(2*a - 1:2*a, 2*b - 1:2*b, 1)
+         end do
+      end do
+   end subroutine build_stencil
 
    pure real(wp) function signed_area(xe)
       real(wp), intent(in) :: xe(2, 4)
@@ -108,25 +236,75 @@ contains
       dt = 2/sqrt(this%omega2_element)
    end function stiffness_dt_critical
 
-   !> f = K u, element by element.
+   !> f = K u (a gather over nodes; the same bits for any number of threads).
    subroutine stiffness_apply(this, u, f)
       class(stiffness_t), intent(in) :: this
       real(wp), intent(in) :: u(:, :)      !< displacements (2, nnode) [mm]
-      real(wp), intent(out) :: f(:, :)     !< internal forces (2, nnode) [N]
-      real(wp) :: ue(8), fe(8)
-      integer :: e, a, n
-      f = 0
-      do e = 1, size(this%conn, 2)
-         do a = 1, 4
-            ue(2*a - 1:2*a) = u(:, this%conn(a, e))
+      real(wp), intent(inout) :: f(:, :)   !< internal forces (2, nnode) [N], all overwritten
+      if (this%structured) call apply_structured(this, this%nx, this%ny, u, f)
+      call apply_rows(this, u, f)
+   end subroutine stiffness_apply
+
+   !> f(:, n) = sum of the 2 x 2 blocks of row n times u, for the block rows of K.
+   subroutine apply_rows(this, u, f)
+      type(stiffness_t), intent(in) :: this
+      real(wp), intent(in) :: u(:, :)
+      real(wp), intent(inout) :: f(:, :)
+      integer :: r, k, m
+      real(wp) :: fx, fy
+      !$omp parallel do schedule(static) private(k, m, fx, fy)
+      do r = 1, size(this%row_node)
+         fx = 0
+         fy = 0
+         do k = this%row_start(r), this%row_start(r + 1) - 1
+            m = this%blk_col(k)
+            fx = fx + this%blk(1, 1, k)*u(1, m) + this%blk(1, 2, k)*u(2, m)
+            fy = fy + this%blk(2, 1, k)*u(1, m) + this%blk(2, 2, k)*u(2, m)
          end do
-         fe = matmul(this%ke(:, :, this%shape_of(e)), ue)
-         do a = 1, 4
-            n = this%conn(a, e)
-            f(:, n) = f(:, n) + fe(2*a - 1:2*a)
+         f(1, this%row_node(r)) = fx
+         f(2, this%row_node(r)) = fy
+      end do
+      !$omp end parallel do
+   end subroutine apply_rows
+
+   !> Structured mesh of equal elements, u and f seen as (2, 0:nx, 0:ny): the 9-point stencil on
+   !> interior nodes (vectorised along rows, rows shared among threads), block rows on the
+   !> boundary nodes.
+   subroutine apply_structured(this, nx, ny, u, f)
+      type(stiffness_t), intent(in) :: this
+      integer, intent(in) :: nx, ny
+      real(wp), intent(in) :: u(2, 0:nx, 0:ny)
+      real(wp), intent(inout) :: f(2, 0:nx, 0:ny)
+      integer :: i, j
+      real(wp) :: fx, fy, s(2, 2, -1:1, -1:1)
+      s = this%stencil   ! a local copy: the compiler then sees no aliasing and vectorises
+      !$omp parallel do schedule(static) private(i, fx, fy)
+      do j = 1, ny - 1
+         do i = 1, nx - 1
+            fx = s(1, 1, -1, -1)*u(1, i - 1, j - 1) + s(1, 2, -1, -1)*u(2, i - 1, j - 1) &
+                 + s(1, 1, 0, -1)*u(1, i, j - 1) + s(1, 2, 0, -1)*u(2, i, j - 1) &
+                 + s(1, 1, 1, -1)*u(1, i + 1, j - 1) + s(1, 2, 1, -1)*u(2, i + 1, j - 1) &
+                 + s(1, 1, -1, 0)*u(1, i - 1, j) + s(1, 2, -1, 0)*u(2, i - 1, j) &
+                 + s(1, 1, 0, 0)*u(1, i, j) + s(1, 2, 0, 0)*u(2, i, j) &
+                 + s(1, 1, 1, 0)*u(1, i + 1, j) + s(1, 2, 1, 0)*u(2, i + 1, j) &
+                 + s(1, 1, -1, 1)*u(1, i - 1, j + 1) + s(1, 2, -1, 1)*u(2, i - 1, j + 1) &
+                 + s(1, 1, 0, 1)*u(1, i, j + 1) + s(1, 2, 0, 1)*u(2, i, j + 1) &
+                 + s(1, 1, 1, 1)*u(1, i + 1, j + 1) + s(1, 2, 1, 1)*u(2, i + 1, j + 1)
+            fy = s(2, 1, -1, -1)*u(1, i - 1, j - 1) + s(2, 2, -1, -1)*u(2, i - 1, j - 1) &
+                 + s(2, 1, 0, -1)*u(1, i, j - 1) + s(2, 2, 0, -1)*u(2, i, j - 1) &
+                 + s(2, 1, 1, -1)*u(1, i + 1, j - 1) + s(2, 2, 1, -1)*u(2, i + 1, j - 1) &
+                 + s(2, 1, -1, 0)*u(1, i - 1, j) + s(2, 2, -1, 0)*u(2, i - 1, j) &
+                 + s(2, 1, 0, 0)*u(1, i, j) + s(2, 2, 0, 0)*u(2, i, j) &
+                 + s(2, 1, 1, 0)*u(1, i + 1, j) + s(2, 2, 1, 0)*u(2, i + 1, j) &
+                 + s(2, 1, -1, 1)*u(1, i - 1, j + 1) + s(2, 2, -1, 1)*u(2, i - 1, j + 1) &
+                 + s(2, 1, 0, 1)*u(1, i, j + 1) + s(2, 2, 0, 1)*u(2, i, j + 1) &
+                 + s(2, 1, 1, 1)*u(1, i + 1, j + 1) + s(2, 2, 1, 1)*u(2, i + 1, j + 1)
+            f(1, i, j) = fx
+            f(2, i, j) = fy
          end do
       end do
-   end subroutine stiffness_apply
+      !$omp end parallel do
+   end subroutine apply_structured
 
    !> f = f + K_E u (or f - K_E u with subtract) over the listed elements only.
    subroutine stiffness_apply_elements(this, elements, u, f, subtract)
