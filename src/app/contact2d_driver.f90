@@ -30,6 +30,7 @@ contains
       integer(i8) :: clock0, clock1, clock_last_progress, rate, t_steps, t_output, tick, snap_step
       real(wp) :: residual, t_load_end, omega2_power, timings(4), wall, kin_ratio
       logical :: converged, done, interactive, exists, sampled
+      real(wp), allocatable :: extra(:, :)
 
       call system_clock(clock0, rate)
       call cli_parse(cli, stat, errmsg)
@@ -73,7 +74,18 @@ contains
          str(model%stiff%nshape)//' distinct element matrix(es)'
       omega2_power = 0
       if (deck%solver%power_iterations > 0) then
-         omega2_power = model%stiff%power_omega2(model%load%free, deck%solver%power_iterations)
+         if (model%contact%penalty) then
+            ! the penalty springs k_p w_i on the normal dofs of the contact nodes (all closed)
+            allocate (extra(2, model%mesh%nnode))
+            extra = 0
+            do i = 1, model%contact%nc
+               extra(:, model%contact%node(i)) = model%contact%penalty_stiffness*model%contact%weight(i)* &
+                                                  model%contact%normal**2
+            end do
+            omega2_power = model%stiff%power_omega2(model%load%free, deck%solver%power_iterations, extra)
+         else
+            omega2_power = model%stiff%power_omega2(model%load%free, deck%solver%power_iterations)
+         end if
       end if
       call print_time_step(model, omega2_power, deck%solver%power_iterations)
 

@@ -64,6 +64,12 @@ contains
       end if
 
       model%dt_critical = model%stiff%dt_critical()
+      if (model%contact%penalty) then
+         ! penalty springs k_p w_i at the contact nodes stiffen them: the nodal bound
+         ! dt <= 2 / sqrt(omega_max^2 + k_p w_i / m_i) (issue 6)
+         model%dt_critical = 2/sqrt(model%stiff%omega2_element + &
+                                    maxval(model%contact%penalty_stiffness*model%contact%weight/model%contact%mass))
+      end if
       if (deck%solver%dt > 0) then
          model%dt = deck%solver%dt
       else
@@ -71,8 +77,9 @@ contains
       end if
       if (model%dt > model%dt_critical .and. .not. deck%solver%allow_unstable) then
          stat = 1
-         errmsg = deck%path//': solver: dt = '//str(model%dt)//' s exceeds dt_critical = '// &
-                  str(model%dt_critical)//' s (ratio '//str(real(nint(1000*model%dt/model%dt_critical), wp)/1000)// &
+         errmsg = deck%path//': solver: dt = '//str(model%dt)//' s exceeds '// &
+                  trim(merge('the penalty-adjusted dt_critical', 'dt_critical                     ', model%contact%penalty))// &
+                  ' = '//str(model%dt_critical)//' s (ratio '//str(real(nint(1000*model%dt/model%dt_critical), wp)/1000)// &
                   '); set solver:allow_unstable = .true. to run anyway'
          return
       end if

@@ -329,13 +329,15 @@ contains
       end do
    end subroutine stiffness_apply_elements
 
-   !> Power iteration on M^-1 K restricted to the free dofs: a lower estimate of the true
+   !> Power iteration on M^-1 K (plus an optional diagonal stiffness) restricted to the free dofs: a lower estimate of the true
    !> omega_max^2 of the discrete system (its Rayleigh quotient), to measure how conservative the
    !> element bound is. free(2, nnode) is 1 on free dofs and 0 on prescribed ones.
-   function stiffness_power_omega2(this, free, iterations) result(omega2)
+   function stiffness_power_omega2(this, free, iterations, extra) result(omega2)
       class(stiffness_t), intent(in) :: this
       real(wp), intent(in) :: free(:, :)
       integer, intent(in) :: iterations
+      !> an extra diagonal stiffness (2, nnode) added to K, e.g. contact penalty springs [N/mm]
+      real(wp), intent(in), optional :: extra(:, :)
       real(wp) :: omega2
       real(wp), allocatable :: x(:, :), y(:, :)
       real(wp) :: xmx
@@ -351,6 +353,7 @@ contains
       omega2 = 0
       do it = 1, iterations
          call this%apply(x, y)
+         if (present(extra)) y = y + extra*x
          y = y*free
          xmx = sum(spread(this%mass, 1, 2)*x*x)
          omega2 = sum(x*y)/xmx
