@@ -50,6 +50,12 @@ module contact2d_contact
       logical, allocatable :: stuck(:)        !< the node stuck in the last step
       !> largest |tangential increment| of a stuck node since the last reset [mm] (should be 0)
       real(wp) :: stick_increment_max = 0
+      !> status changes (separated/stick/slip) summed over nodes and steps since the last reset
+      integer(i8) :: status_changes = 0
+      !> largest penetration since the last reset [mm]: per node (P1, penalty), per dual cell
+      !> as max((D d)_i, 0)/w_i (P0)
+      real(wp) :: penetration_max = 0
+      integer, allocatable :: last_status(:), cur_status(:)
       real(wp) :: friction_dissipation = 0  !< [mJ]
       real(wp) :: normal_work = 0           !< sum F_n,i Delta d_i [mJ]
       real(wp) :: normal_total = 0          !< sum of F_n [N]
@@ -146,8 +152,10 @@ contains
       associate (nc => this%nc)
          allocate (this%abscissa(nc), this%h(max(nc - 1, 0)), this%weight(nc), this%gap(nc), &
                    this%threshold(nc), this%limit(nc), this%mass(nc), this%slides(nc), &
-                   this%fn(nc), this%ft(nc), this%mu(nc), this%dtil(nc), this%b(nc), this%stuck(nc))
+                   this%fn(nc), this%ft(nc), this%mu(nc), this%dtil(nc), this%b(nc), this%stuck(nc), &
+                   this%last_status(nc), this%cur_status(nc))
          this%stuck = .false.
+         this%last_status = status_separated
          this%fn = 0
          this%ft = 0
          this%mu = 0
@@ -357,6 +365,20 @@ contains
          this%friction_dissipation = this%friction_dissipation + wf
          this%normal_total = fnsum
          this%tangential_total = ftsum
+         ! diagnostics: status changes and penetration of u^(n+1)
+         call this%status(this%cur_status)
+         this%status_changes = this%status_changes + count(this%cur_status /= this%last_status)
+         this%last_status = this%cur_status
+         do i = 1, nc
+            this%dtil(i) = dot_product(unew(:, this%node(i)), n) - this%gap(i)
+         end do
+         if (this%multiplier == multiplier_p0 .and. .not. this%penalty) then
+            call d_apply(this, this%dtil, this%b)
+            this%b = this%b/this%weight
+         else
+            this%b = this%dtil
+         end if
+         this%penetration_max = max(this%penetration_max, maxval(this%b))
       end associate
       if (.false.) fc(1, 1) = mass(1)
       call system_clock(t1)

@@ -18,12 +18,13 @@ module contact2d_output
    public :: output_t, history_names
 
    !> History series: SPEC section 8 names first, then additions (docs/output.md).
-   character(len=24), parameter :: history_names(14) = [character(len=24) :: &
+   character(len=24), parameter :: history_names(16) = [character(len=24) :: &
       'time', 'kinetic_energy', 'strain_energy', 'external_work', 'friction_dissipation', &
       'damping_dissipation', 'energy_balance_error', 'residual', 'normal_force_total', &
-      'tangential_force_total', 'normal_contact_work', 'step', 'damping_alpha', 'stick_increment_max']
-   character(len=8), parameter :: history_units(14) = [character(len=8) :: &
-      's', 'mJ', 'mJ', 'mJ', 'mJ', 'mJ', '1', '1', 'N', 'N', 'mJ', '1', '1/s', 'mm']
+      'tangential_force_total', 'normal_contact_work', 'step', 'damping_alpha', 'stick_increment_max', &
+      'status_changes', 'penetration_max']
+   character(len=8), parameter :: history_units(16) = [character(len=8) :: &
+      's', 'mJ', 'mJ', 'mJ', 'mJ', 'mJ', '1', '1', 'N', 'N', 'mJ', '1', '1/s', 'mm', '1', 'mm']
    integer, parameter :: nseries = size(history_names)
    integer, parameter :: flush_samples = 256
    real(wp), parameter :: flush_seconds = 2.0_wp
@@ -129,8 +130,11 @@ contains
                                       c%friction_dissipation, solver%damping_dissipation, &
                                       solver%balance_error(c%friction_dissipation, c%normal_work), &
                                       residual, c%normal_total, c%tangential_total, c%normal_work, &
-                                      real(solver%step, wp), solver%alpha, c%stick_increment_max]
+                                      real(solver%step, wp), solver%alpha, c%stick_increment_max, &
+                                      real(c%status_changes, wp), c%penetration_max]
          c%stick_increment_max = 0
+         c%status_changes = 0
+         c%penetration_max = 0
       end associate
       call system_clock(now, rate)
       if (this%nbuf == flush_samples .or. real(now - this%last_flush_clock, wp) > flush_seconds*rate) then
