@@ -15,6 +15,10 @@ module contact2d_stiffness
    !> How many known shapes a new element is compared with before it gets its own matrix.
    integer, parameter :: shape_search = 8
 
+   !> Meshes with fewer nodes run the kernels on one thread (a parallel region costs more than
+   !> the work; see docs/performance.md).
+   integer, parameter, public :: omp_min_nodes = 4096
+
    !> Offsets (i, j) of the four local nodes of a structured element from its bottom-left node.
    integer, parameter :: off(2, 4) = reshape([0, 0, 1, 0, 1, 1, 0, 1], [2, 4])
 
@@ -252,7 +256,7 @@ contains
       real(wp), intent(inout) :: f(:, :)
       integer :: r, k, m
       real(wp) :: fx, fy
-      !$omp parallel do schedule(static) private(k, m, fx, fy)
+      !$omp parallel do schedule(static) private(k, m, fx, fy) if(size(this%row_node) >= omp_min_nodes)
       do r = 1, size(this%row_node)
          fx = 0
          fy = 0
@@ -278,7 +282,7 @@ contains
       integer :: i, j
       real(wp) :: fx, fy, s(2, 2, -1:1, -1:1)
       s = this%stencil   ! a local copy: the compiler then sees no aliasing and vectorises
-      !$omp parallel do schedule(static) private(i, fx, fy)
+      !$omp parallel do schedule(static) private(i, fx, fy) if((nx + 1)*(ny + 1) >= omp_min_nodes)
       do j = 1, ny - 1
          do i = 1, nx - 1
             fx = s(1, 1, -1, -1)*u(1, i - 1, j - 1) + s(1, 2, -1, -1)*u(2, i - 1, j - 1) &

@@ -452,9 +452,36 @@ contains
                call read_edge_load(blk, 'traction', pick(ovr, 'traction', nt), where, deck%traction(nt), stat, errmsg)
             end select
          end associate
-         if (stat /= 0) return
+         if (stat /= 0) then
+            if (index(errmsg, where) == 1) errmsg = pinpoint(errmsg, where, lines, blocks(b), path)
+            return
+         end if
       end do
    end subroutine read_groups
+
+   !> A runtime message 'Cannot match namelist object name X' points at the group's first line;
+   !> point it at the line holding X instead and quote that line.
+   function pinpoint(msg, where, lines, blk, path) result(out)
+      character(len=*), intent(in) :: msg, where, path
+      character(len=line_len), intent(in) :: lines(:)
+      type(block_t), intent(in) :: blk
+      character(len=:), allocatable :: out, token
+      integer :: k, l, e
+      out = msg
+      k = index(msg, 'object name ')
+      if (k == 0) return
+      token = msg(k + len('object name '):)
+      e = scan(token, ' ,')
+      if (e > 0) token = token(:e - 1)
+      if (len(token) == 0) return
+      do l = blk%first, blk%last
+         if (index(lower(lines(l)), lower(token)) > 0) then
+            out = path//':'//str(l)//': &'//trim(blk%name)//': '//msg(len(where) + 1:)// &
+                  " (in '"//trim(adjustl(lines(l)))//"')"
+            return
+         end if
+      end do
+   end function pinpoint
 
    !> The overrides of one group occurrence, each made a one-line namelist record.
    function pick(ovr, group, occurrence) result(sel)

@@ -11,7 +11,7 @@
 module contact2d_explicit
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use contact2d_kinds, only: wp, i8
-   use contact2d_stiffness, only: stiffness_t
+   use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    use contact2d_loading, only: loading_t
    use contact2d_contact, only: contact_t
    implicit none
@@ -195,7 +195,7 @@ contains
       real(wp), intent(in) :: u(2, nnode), v(2, nnode), fint(2, nnode), minv(nnode)
       real(wp), intent(out) :: unew(2, nnode)
       integer :: b, i
-      !$omp parallel do schedule(static) private(i)
+      !$omp parallel do schedule(static) private(i) if(nnode >= omp_min_nodes)
       do b = 1, nblock
          do i = (b - 1)*block_size + 1, min(b*block_size, nnode)
             unew(1, i) = u(1, i) + dta2*(a1*v(1, i) - dt*minv(i)*fint(1, i))
@@ -238,7 +238,7 @@ contains
       integer :: b, d
       real(wp) :: rdt, vn, vb, ek, ed, es
       rdt = 1/dt
-      !$omp parallel do schedule(static) private(d, vn, vb, ek, ed, es)
+      !$omp parallel do schedule(static) private(d, vn, vb, ek, ed, es) if(ndof >= 2*omp_min_nodes)
       do b = 1, nblock
          ek = 0
          ed = 0
