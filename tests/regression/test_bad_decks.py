@@ -22,9 +22,10 @@ CASES = [
     ("misspelled_group", "bad_decks/misspelled_group.nml", [],
      r"unknown group '&materail'.*'material'"),
     ("wrong_type_string", "bad_decks/wrong_type_string.nml", [],
-     r":2: &mesh: .*'abc'"),
+     # the message points at the deck line holding the bad value and quotes it
+     r":3: &mesh: .*'abc'.*nx = 'abc'"),
     ("wrong_type_real", "bad_decks/wrong_type_real.nml", [],
-     r":2: &mesh: .*\.5"),
+     r":3: &mesh: .*\.5.*nx = 2\.5"),
     ("missing_deck_file", "no_such_deck.nml", [],
      r"no_such_deck\.nml.*(no such file|not found|does not exist)"),
     ("young_zero", "bad_decks/young_zero.nml", [],
