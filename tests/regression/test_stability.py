@@ -28,6 +28,10 @@ SCENES = {
     "elastic": ("uniaxial_compression.nml", []),
     "contact_p1": ("baillet_sassi_2002_p1.nml", ["--set", "mesh:level=2"]),
     "contact_p0": ("baillet_sassi_2002_p0.nml", ["--set", "mesh:level=2"]),
+    "contact_p1_frictionless": ("baillet_sassi_2002_p1.nml", ["--set", "mesh:level=2", "--set",
+                                "contact:friction='frictionless'", "--set", "contact:threshold=0"]),
+    "contact_p0_frictionless": ("baillet_sassi_2002_p0.nml", ["--set", "mesh:level=2", "--set",
+                                "contact:friction='frictionless'", "--set", "contact:threshold=0"]),
 }
 STEPS = 20000
 # t_end far beyond 20 000 steps so that max_steps is the limit that binds
