@@ -239,7 +239,7 @@ def scope(ctx):
             with Run(h5) as r:
                 t = r.history("time")
                 ch = r.history("status_changes")
-                tr = 1.0e-5
+                tr = float(r.deck["solver"]["t_ramp"])
                 late = t > 2 * tr
                 rows.append(dict(multiplier=m.upper(), tresca_scope=sc, converged=int(r.attrs["converged"]),
                                  steps=int(r.attrs["steps"]), final_residual=float(r.history("residual")[-1]),
