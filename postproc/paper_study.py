@@ -226,7 +226,8 @@ def plot_fig3(files, levels, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    shown = [k for k in levels if k >= 2][-3:] or levels[-3:]
+    # three levels two apart (coarse to fine) so that the differences are visible
+    shown = [k for k in levels if (levels[-1] - k) % 2 == 0][-3:]
     fig, axes = plt.subplots(2, 2, figsize=(12, 7.5), sharex=True)
     for col, m in enumerate(MULTIPLIERS):
         for k, ls in zip(shown, ("-", "--", ":")):

@@ -1,0 +1,150 @@
+#!/usr/bin/env python3
+"""Speed benchmark of contact2d on the paper scene (issue 5): prints its figures.
+
+    /usr/bin/python3 postproc/bench_speed.py [--levels 3-6] [--repeats 3] [--out study/bench]
+
+For each mesh level k (13 2^k x 3 2^k elements):
+  1. step throughput: element-steps per second of the step loop (contact included) with 1 and 2
+     OpenMP threads, median of --repeats runs of a fixed number of steps, and the ratio 2/1;
+  2. time to the quasi-static end state: steps and wall time of the default deck (P1, Tresca,
+     relative residual 1e-8), best thread count;
+  3. the same problem solved by the GetFEM static reference on the same mesh, timed in the same
+     run (median of --repeats; postproc/getfem_reference.py, Tresca when it converges, else the
+     frictionless variant for both codes), and the ratio explicit / static.
+Then the targets of issue 5 with PASS/MISS. Timings are wall-clock on a shared machine: medians,
+and ratios of two things measured side by side.
+"""
+import argparse
+import json
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from c2dh5 import Run  # noqa: E402
+from c2drun import ROOT, find_exe, run  # noqa: E402
+
+DECK = ROOT / "inputs" / "baillet_sassi_2002_p1.nml"
+PYTHON = "/usr/bin/python3"
+
+
+def parse_levels(text):
+    a, _, b = text.partition("-")
+    return list(range(int(a), int(b or a) + 1))
+
+
+def throughput(exe, out, level, threads, repeats):
+    """Median element-steps/s of the step loop over `repeats` runs of a fixed number of steps."""
+    nel = 39 * 4**level
+    steps = max(200, int(3e8 / nel))          # about 3e8 element-steps per run
+    rates = []
+    for i in range(repeats):
+        h5 = out / f"tp_k{level}_t{threads}_{i}.h5"
+        res = run(exe, DECK, h5, {"mesh:level": level, "solver:max_steps": steps, "solver:t_end": 1.0,
+                                  "solver:tol_residual": 1e-300, "solver:power_iterations": 0,
+                                  "output:history_interval": steps, "output:xdmf": False}, threads=threads)
+        if res.returncode != 0:
+            sys.exit(f"throughput run failed: {res.stderr}")
+        with Run(h5) as r:
+            rates.append(int(r.attrs["steps"]) * int(r.attrs["element_count"]) / float(r.attrs["time_steps_seconds"]))
+        h5.unlink()
+    return statistics.median(rates), steps
+
+
+def end_state(exe, out, level, threads, repeats, sets):
+    """Median wall time to the converged end state, and its steps."""
+    walls, steps = [], None
+    for i in range(repeats):
+        h5 = out / f"end_k{level}_{i}.h5"
+        res = run(exe, DECK, h5, {"mesh:level": level, "output:xdmf": False, **sets}, threads=threads)
+        if res.returncode != 0:
+            sys.exit(f"end-state run failed: {res.stderr}")
+        with Run(h5) as r:
+            if int(r.attrs["converged"]) != 1:
+                sys.exit(f"k={level}: the end-state run did not converge")
+            walls.append(float(r.attrs["wall_seconds"]))
+            steps = int(r.attrs["steps"])
+        if i < repeats - 1:
+            h5.unlink()
+    return statistics.median(walls), steps, h5
+
+
+def getfem_time(src, out, level, friction, repeats):
+    """Median GetFEM wall time (assembly + solve, as the script reports it) and total process time."""
+    walls, procs = [], []
+    for i in range(repeats):
+        ref = out / f"gf_k{level}_{friction}_{i}.h5"
+        t0 = time.perf_counter()
+        proc = subprocess.run([PYTHON, str(ROOT / "postproc" / "getfem_reference.py"), str(src), "-o", str(ref),
+                               "--friction", friction], capture_output=True, text=True)
+        procs.append(time.perf_counter() - t0)
+        if proc.returncode != 0:
+            return None, None, proc.stderr.strip().splitlines()[-1] if proc.stderr.strip() else "failed"
+        with Run(ref) as r:
+            walls.append(float(r.attrs["wall_seconds"]))
+        ref.unlink()
+    return statistics.median(walls), statistics.median(procs), None
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--exe", help="contact2d executable (default build/bin/contact2d)")
+    ap.add_argument("--levels", default="3-6", help="mesh levels (default 3-6)")
+    ap.add_argument("--repeats", type=int, default=3, help="runs per timing (median; default 3)")
+    ap.add_argument("--out", default="study/bench", help="work directory")
+    ap.add_argument("--no-getfem", action="store_true", help="skip the GetFEM reference")
+    args = ap.parse_args()
+    exe = find_exe(args.exe)
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+
+    rows = []
+    for k in parse_levels(args.levels):
+        row = {"level": k, "elements": 39 * 4**k}
+        row["rate_1"], row["throughput_steps"] = throughput(exe, out, k, 1, args.repeats)
+        row["rate_2"], _ = throughput(exe, out, k, 2, args.repeats)
+        row["speedup"] = row["rate_2"] / row["rate_1"]
+        threads = 2 if row["speedup"] > 1 else 1
+        row["threads"] = threads
+        print(f"k={k} ({row['elements']} elements): {row['rate_1']:.3e} element-steps/s on 1 thread, "
+              f"{row['rate_2']:.3e} on 2 ({row['speedup']:.2f}x)", flush=True)
+        # Tresca first; if GetFEM cannot do it, both codes solve the frictionless variant
+        for friction in ("tresca", "frictionless"):
+            sets = {} if friction == "tresca" else {"contact:friction": "frictionless", "contact:threshold": 0.0}
+            wall, steps, h5 = end_state(exe, out, k, threads, args.repeats, sets)
+            gf_wall, gf_proc, why = (None, None, "skipped") if args.no_getfem else \
+                getfem_time(h5, out, k, friction, args.repeats)
+            if gf_wall is not None or args.no_getfem:
+                break
+            print(f"   GetFEM {friction}: {why}; trying the frictionless variant")
+        row.update(friction=friction, end_wall=wall, end_steps=steps, getfem_wall=gf_wall, getfem_process=gf_proc,
+                   ratio=(wall / gf_wall) if gf_wall else None)
+        print(f"   end state ({friction}, {threads} thread(s)): {steps} steps, {wall:.3f} s" +
+              (f"; GetFEM static {gf_wall:.3f} s (process {gf_proc:.2f} s): explicit/static = {wall / gf_wall:.2f}"
+               if gf_wall else ""), flush=True)
+        rows.append(row)
+
+    print("\n level  elements   1 thread    2 threads  speedup | steps to end  wall [s]  GetFEM [s]  explicit/static")
+    for r in rows:
+        gf = f"{r['getfem_wall']:10.3f}  {r['ratio']:15.2f}" if r["getfem_wall"] else f"{'-':>10s}  {'-':>15s}"
+        print(f" {r['level']:5d} {r['elements']:9d} {r['rate_1']:10.3e} {r['rate_2']:10.3e} {r['speedup']:7.2f}x | "
+              f"{r['end_steps']:12d} {r['end_wall']:9.3f} {gf}")
+    print("\ntargets (issue 5):")
+    for r in rows:
+        if r["level"] == 4:
+            print(f"  {'PASS' if r['rate_1'] >= 1e8 else 'MISS'} >= 1e8 element-steps/s on one thread at k = 4: "
+                  f"{r['rate_1']:.3e} ({1e9 / r['rate_1']:.2f} ns per element and step)")
+            if r["getfem_wall"]:
+                print(f"  {'PASS' if r['ratio'] <= 1 else 'MISS'} time to the end state <= GetFEM static at k = 4: "
+                      f"{r['end_wall']:.3f} s against {r['getfem_wall']:.3f} s ({r['friction']})")
+        if r["level"] >= 5:
+            print(f"  {'PASS' if r['speedup'] >= 1.7 else 'MISS'} >= 1.7x on two threads at k = {r['level']}: "
+                  f"{r['speedup']:.2f}x")
+    (out / "bench.json").write_text(json.dumps(rows, indent=1))
+    print(f"wrote {out / 'bench.json'}")
+
+
+if __name__ == "__main__":
+    main()
