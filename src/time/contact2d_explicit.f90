@@ -30,6 +30,7 @@ module contact2d_explicit
       integer :: nnode = 0
       real(wp) :: dt = 0                   !< time step [s]
       real(wp) :: alpha = 0                !< current mass-proportional damping [1/s]
+      real(wp) :: alpha_next = 0           !< damping from the next step on (automatic damping)
       integer :: damping = damping_none    !< damping mode
       integer :: damping_interval = 20     !< steps between omega_1 estimates (auto)
       integer(i8) :: step = 0              !< steps done
@@ -82,6 +83,7 @@ contains
       this%dt = dt
       this%damping = damping
       this%alpha = merge(alpha, 0.0_wp, damping == damping_given)
+      this%alpha_next = this%alpha
       this%damping_interval = damping_interval
       allocate (this%u(2, nnode), this%v(2, nnode), this%unew(2, nnode), this%fint(2, nnode), &
                 this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode))
@@ -118,18 +120,20 @@ contains
 
       dt = this%dt
       do k = 1, nsteps
-         ! 1. internal force at u^n; loads at t_n, prescribed values at t_(n+1)
-         call stiff%apply(this%u, this%fint)
-         if (this%damping == damping_auto) then
-            if (mod(this%step, int(this%damping_interval, i8)) == 0) call this%update_damping(stiff, load)
-         end if
+         ! 1-2. internal force at u^n and, fused with it, the predictor without the loads:
+         !      u~ = u + (dt/(1 + a dt/2)) (a1 v - dt M^-1 f_int)
+         this%alpha = this%alpha_next
          a1 = 1 - 0.5_wp*this%alpha*dt
          a2inv = 1/(1 + 0.5_wp*this%alpha*dt)
          c = dt*dt*a2inv
+         call stiff%apply_update(this%u, this%fint, this%v, this%minv, dt*a2inv*a1, c, this%unew)
+         ! automatic damping: a new alpha from (u^n, K u^n), used from the next step on
+         if (this%damping == damping_auto) then
+            if (mod(this%step, int(this%damping_interval, i8)) == 0) call this%update_damping(stiff, load)
+         end if
+         ! loads at t_n (sparse), prescribed values at t_(n+1)
          this%cval = this%cnext
          call load%curve_values(this%time + dt, this%cnext)
-         ! 2. predictor on every dof without the loads, then the (sparse) loads and prescribed dofs
-         call predictor(this, dt*a2inv, a1, dt)
          do p = 1, load%ntrac
             this%fext(load%tcomp(p), load%tnode(p)) = 0
          end do
@@ -182,28 +186,6 @@ contains
       end do
    end subroutine explicit_advance
 
-   !> u~ = u + (dt/(1 + a dt/2)) (a1 v - dt M^-1 f_int) on every dof.
-   subroutine predictor(this, dta2, a1, dt)
-      type(explicit_t), intent(inout) :: this
-      real(wp), intent(in) :: dta2, a1, dt
-      call predictor_blocks(this%nnode, this%nblock, dta2, a1, dt, this%u, this%v, this%fint, this%minv, this%unew)
-   end subroutine predictor
-
-   subroutine predictor_blocks(nnode, nblock, dta2, a1, dt, u, v, fint, minv, unew)
-      integer, intent(in) :: nnode, nblock
-      real(wp), intent(in) :: dta2, a1, dt
-      real(wp), intent(in) :: u(2, nnode), v(2, nnode), fint(2, nnode), minv(nnode)
-      real(wp), intent(out) :: unew(2, nnode)
-      integer :: b, i
-      !$omp parallel do schedule(static) private(i) if(nnode >= omp_min_nodes)
-      do b = 1, nblock
-         do i = (b - 1)*block_size + 1, min(b*block_size, nnode)
-            unew(1, i) = u(1, i) + dta2*(a1*v(1, i) - dt*minv(i)*fint(1, i))
-            unew(2, i) = u(2, i) + dta2*(a1*v(2, i) - dt*minv(i)*fint(2, i))
-         end do
-      end do
-      !$omp end parallel do
-   end subroutine predictor_blocks
 
    !> v^(n+1/2) = (u^(n+1) - u^n)/dt; kinetic, strain and damping energies.
    subroutine corrector(this, dt)
@@ -285,7 +267,7 @@ contains
             den = den + this%mass(i)*du*du
          end do
       end do
-      if (num > 0 .and. den > 0) this%alpha = min(2*sqrt(num/den), 2/this%dt)
+      if (num > 0 .and. den > 0) this%alpha_next = min(2*sqrt(num/den), 2/this%dt)
       this%u_mark = this%u
       this%f_mark = this%fint
    end subroutine explicit_update_damping

@@ -117,7 +117,7 @@ class Test:
         os.makedirs(path)
         return path
 
-    def run(self, deck, *args, name=None, cwd=None, output="out.h5", timeout=600, quiet=True):
+    def run(self, deck, *args, name=None, cwd=None, output="out.h5", timeout=600, quiet=True, env=None):
         """Run the program on deck with extra args, in cwd (default: a fresh subdir `name`).
 
         output: file name given with -o (relative to cwd), or None to let the program choose
@@ -139,7 +139,7 @@ class Test:
         t0 = time.monotonic()
         try:
             proc = subprocess.run(cmd, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                  timeout=timeout)
+                                  timeout=timeout, env=None if env is None else {**os.environ, **env})
         except subprocess.TimeoutExpired:
             self.abort("run timed out after %g s: %s" % (timeout, " ".join(cmd)))
         seconds = time.monotonic() - t0
