@@ -207,7 +207,8 @@ contains
          this%threshold = threshold
       end if
       if (.not. this%friction) this%threshold = 0
-      this%limit = this%threshold*this%weight
+      ! no friction force where the tangential dof is prescribed: the reaction carries it
+      this%limit = merge(this%threshold*this%weight, 0.0_wp, this%slides)
 
       this%penalty = method == 'penalty'
       this%penalty_stiffness = penalty_stiffness
@@ -291,96 +292,98 @@ contains
    !> The contact step (SPEC section 4, step 3). u^n, v^(n-1/2) and the trial u~ (unew) in;
    !> unew becomes u^(n+1) = u~ + c M^-1 F_c at the contact nodes and fc(:, node) = F_c.
    !> Energies use the centred increment (u^(n+1) - u^(n-1))/2 (SPEC section 6).
-   subroutine contact_enforce(this, u, v, unew, mass, c, dt, fc)
+   subroutine contact_enforce(this, u, v, unew, c, dt, fc)
       class(contact_t), intent(inout) :: this
       real(wp), intent(in) :: u(:, :)      !< u^n [mm]
       real(wp), intent(in) :: v(:, :)      !< v^(n-1/2) [mm/s]
       real(wp), intent(inout) :: unew(:, :)  !< u~ in, u^(n+1) out [mm]
-      real(wp), intent(in) :: mass(:)      !< lumped masses (unused: contact keeps its own copy)
       real(wp), intent(in) :: c            !< dt^2 / (1 + alpha dt / 2) [s^2]
       real(wp), intent(in) :: dt           !< [s]
       real(wp), intent(inout) :: fc(:, :)  !< contact force on the body [N]
       integer(i8) :: t0, t1
-      integer :: i, k
-      real(wp) :: trial, lim, f(2), delta(2), fnsum, ftsum, wn, wf
+      integer :: i, k, st
+      real(wp) :: nx, ny, tx, ty, trial, lim, fx, fy, dx, dy, fnsum, ftsum, wn, wf, rc
+      logical :: cells
 
       call system_clock(t0)
-      associate (n => this%normal, t => this%tangent, nc => this%nc)
-         ! normal forces
-         if (this%penalty) then
-            ! explicit penalty on the gap at t_n: F_n = k_p w_i max(d_i^n, 0)
-            do i = 1, nc
-               k = this%node(i)
-               this%fn(i) = this%penalty_stiffness*this%weight(i)*max(dot_product(u(:, k), n) - this%gap(i), 0.0_wp)
-            end do
-         else if (this%multiplier == multiplier_p1) then
-            ! P1: Lambda_n,i = max(0, m_i d~_i / c), node by node
-            do i = 1, nc
-               k = this%node(i)
-               this%fn(i) = max(0.0_wp, this%mass(i)*(dot_product(unew(:, k), n) - this%gap(i))/c)
-            end do
-         else
-            ! P0: mu >= 0, (D M^-1 D^T) mu - D d~ / c >= 0, complementary; F_n = D mu
-            do i = 1, nc
-               this%dtil(i) = dot_product(unew(:, this%node(i)), n) - this%gap(i)
-            end do
-            call d_apply(this, this%dtil, this%b)
-            this%b = this%b/c
-            if (this%stat == 0) call this%lcp%solve(this%b, this%mu, this%stat, this%errmsg)
-            call d_apply(this, this%mu, this%fn)
-         end if
-         ! tangential forces: trial stick, else slip at the threshold (nodal Tresca)
-         if (this%friction) then
-            do i = 1, nc
-               k = this%node(i)
-               lim = this%limit(i)
-               if (this%friction_in_contact_only) then
-                  if (this%fn(i) <= 0) lim = 0
-               end if
-               if (.not. this%slides(i)) lim = 0
-               trial = this%mass(i)*dot_product(unew(:, k) - u(:, k), t)/c
-               this%ft(i) = sign(min(abs(trial), lim), trial)
-               this%stuck(i) = abs(trial) < lim
-            end do
-         end if
-         ! apply, and account the work on the centred increment
-         fnsum = 0
-         ftsum = 0
-         wn = 0
-         wf = 0
-         do i = 1, nc
+      nx = this%normal(1)
+      ny = this%normal(2)
+      tx = this%tangent(1)
+      ty = this%tangent(2)
+      rc = 1/c
+      cells = this%multiplier == multiplier_p0 .and. .not. this%penalty
+      ! normal forces
+      if (this%penalty) then
+         ! explicit penalty on the gap at t_n: F_n = k_p w_i max(d_i^n, 0)
+         do i = 1, this%nc
             k = this%node(i)
-            f = -this%fn(i)*n - this%ft(i)*t
-            unew(:, k) = unew(:, k) + (c/this%mass(i))*f
-            fc(:, k) = f
-            if (this%stuck(i)) this%stick_increment_max = &
-               max(this%stick_increment_max, abs(dot_product(unew(:, k) - u(:, k), t)))
-            delta = 0.5_wp*(unew(:, k) - u(:, k)) + 0.5_wp*dt*v(:, k)
-            wn = wn + this%fn(i)*dot_product(delta, n)
-            wf = wf + this%ft(i)*dot_product(delta, t)
-            fnsum = fnsum + this%fn(i)
-            ftsum = ftsum + this%ft(i)
+            this%fn(i) = this%penalty_stiffness*this%weight(i)*max(u(1, k)*nx + u(2, k)*ny - this%gap(i), 0.0_wp)
          end do
-         this%normal_work = this%normal_work + wn
-         this%friction_dissipation = this%friction_dissipation + wf
-         this%normal_total = fnsum
-         this%tangential_total = ftsum
-         ! diagnostics: status changes and penetration of u^(n+1)
-         call this%status(this%cur_status)
-         this%status_changes = this%status_changes + count(this%cur_status /= this%last_status)
-         this%last_status = this%cur_status
-         do i = 1, nc
-            this%dtil(i) = dot_product(unew(:, this%node(i)), n) - this%gap(i)
+      else if (this%multiplier == multiplier_p1) then
+         ! P1: Lambda_n,i = max(0, m_i d~_i / c), node by node
+         do i = 1, this%nc
+            k = this%node(i)
+            this%fn(i) = max(0.0_wp, this%mass(i)*(unew(1, k)*nx + unew(2, k)*ny - this%gap(i))*rc)
          end do
-         if (this%multiplier == multiplier_p0 .and. .not. this%penalty) then
-            call d_apply(this, this%dtil, this%b)
-            this%b = this%b/this%weight
-         else
-            this%b = this%dtil
-         end if
+      else
+         ! P0: mu >= 0, (D M^-1 D^T) mu - D d~ / c >= 0, complementary; F_n = D mu
+         do i = 1, this%nc
+            k = this%node(i)
+            this%dtil(i) = (unew(1, k)*nx + unew(2, k)*ny - this%gap(i))*rc
+         end do
+         call d_apply(this, this%dtil, this%b)
+         if (this%stat == 0) call this%lcp%solve(this%b, this%mu, this%stat, this%errmsg)
+         call d_apply(this, this%mu, this%fn)
+      end if
+      ! tangential forces: trial stick, else slip at the threshold (nodal Tresca)
+      if (this%friction) then
+         do i = 1, this%nc
+            k = this%node(i)
+            lim = this%limit(i)
+            if (this%friction_in_contact_only .and. this%fn(i) <= 0) lim = 0
+            trial = this%mass(i)*((unew(1, k) - u(1, k))*tx + (unew(2, k) - u(2, k))*ty)*rc
+            this%ft(i) = sign(min(abs(trial), lim), trial)
+            this%stuck(i) = abs(trial) < lim
+         end do
+      end if
+      ! apply; work on the centred increment (u^(n+1) - u^(n-1))/2; diagnostics of u^(n+1)
+      fnsum = 0
+      ftsum = 0
+      wn = 0
+      wf = 0
+      do i = 1, this%nc
+         k = this%node(i)
+         fx = -this%fn(i)*nx - this%ft(i)*tx
+         fy = -this%fn(i)*ny - this%ft(i)*ty
+         unew(1, k) = unew(1, k) + (c/this%mass(i))*fx
+         unew(2, k) = unew(2, k) + (c/this%mass(i))*fy
+         fc(1, k) = fx
+         fc(2, k) = fy
+         dx = unew(1, k) - u(1, k)
+         dy = unew(2, k) - u(2, k)
+         if (this%stuck(i)) this%stick_increment_max = max(this%stick_increment_max, abs(dx*tx + dy*ty))
+         dx = 0.5_wp*(dx + dt*v(1, k))
+         dy = 0.5_wp*(dy + dt*v(2, k))
+         wn = wn + this%fn(i)*(dx*nx + dy*ny)
+         wf = wf + this%ft(i)*(dx*tx + dy*ty)
+         fnsum = fnsum + this%fn(i)
+         ftsum = ftsum + this%ft(i)
+         this%dtil(i) = unew(1, k)*nx + unew(2, k)*ny - this%gap(i)
+         st = node_status(this, i)
+         if (st /= this%last_status(i)) this%status_changes = this%status_changes + 1
+         this%last_status(i) = st
+      end do
+      this%normal_work = this%normal_work + wn
+      this%friction_dissipation = this%friction_dissipation + wf
+      this%normal_total = fnsum
+      this%tangential_total = ftsum
+      if (cells) then
+         call d_apply(this, this%dtil, this%b)
+         this%b = this%b/this%weight
          this%penetration_max = max(this%penetration_max, maxval(this%b))
-      end associate
-      if (.false.) fc(1, 1) = mass(1)
+      else
+         this%penetration_max = max(this%penetration_max, maxval(this%dtil))
+      end if
       call system_clock(t1)
       this%clock_ticks = this%clock_ticks + (t1 - t0)
    end subroutine contact_enforce
@@ -390,24 +393,31 @@ contains
       class(contact_t), intent(in) :: this
       integer, intent(out) :: status(:)
       integer :: i
-      logical :: touching
       do i = 1, this%nc
-         if (this%multiplier == multiplier_p0 .and. .not. this%penalty) then
-            touching = this%mu(i) > 0
-         else
-            touching = this%fn(i) > 0
-         end if
-         if (.not. touching) then
-            status(i) = status_separated
-         else if (.not. this%friction) then
-            status(i) = status_slip
-         else if (this%threshold(i) > 0 .and. abs(this%ft(i)) >= (1 - slip_tol)*this%limit(i)) then
-            status(i) = status_slip
-         else
-            status(i) = status_stick
-         end if
+         status(i) = node_status(this, i)
       end do
    end subroutine contact_status
+
+   !> Status of contact node i; with P0 the normal part is judged on the node's dual cell.
+   pure integer function node_status(this, i) result(status)
+      type(contact_t), intent(in) :: this
+      integer, intent(in) :: i
+      logical :: touching
+      if (this%multiplier == multiplier_p0 .and. .not. this%penalty) then
+         touching = this%mu(i) > 0
+      else
+         touching = this%fn(i) > 0
+      end if
+      if (.not. touching) then
+         status = status_separated
+      else if (.not. this%friction) then
+         status = status_slip
+      else if (this%limit(i) > 0 .and. abs(this%ft(i)) >= (1 - slip_tol)*this%limit(i)) then
+         status = status_slip
+      else
+         status = status_stick
+      end if
+   end function node_status
 
    !> Multiplier fields (SPEC section 3): P1 (and penalty) per node, lambda = M_c^-1 F (consistent
    !> 1D mass of Gamma_c, LAPACK dptsv); P0 per dual cell, mu_n and mu_t = D^-1 F_t.

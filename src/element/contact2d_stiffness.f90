@@ -247,8 +247,10 @@ contains
       real(wp), intent(in) :: u(:, :)      !< displacements (2, nnode) [mm]
       real(wp), intent(inout) :: f(:, :)   !< internal forces (2, nnode) [N], all overwritten
       ! without the update the v, minv and w arguments are never referenced: placeholders
+      !$omp parallel if(this%nnode >= omp_min_nodes)
       if (this%structured) call apply_structured(this, this%nx, this%ny, u, f, u, this%mass, 0.0_wp, 0.0_wp, f, .false.)
       call apply_rows(this, u, f, u, this%mass, 0.0_wp, 0.0_wp, f, .false.)
+      !$omp end parallel
    end subroutine stiffness_apply
 
    !> f = K u and, in the same pass over memory, w = u + c1 v - c2 M^-1 f: the central-difference
@@ -261,8 +263,11 @@ contains
       real(wp), intent(in) :: minv(:)      !< 1/m per node [1/t]
       real(wp), intent(in) :: c1, c2       !< coefficients [s], [s^2]
       real(wp), intent(inout) :: w(:, :)   !< u~ (2, nnode) [mm], all overwritten
+      ! one parallel region; the loops inside are work-shared (orphaned omp do)
+      !$omp parallel if(this%nnode >= omp_min_nodes)
       if (this%structured) call apply_structured(this, this%nx, this%ny, u, f, v, minv, c1, c2, w, .true.)
       call apply_rows(this, u, f, v, minv, c1, c2, w, .true.)
+      !$omp end parallel
    end subroutine stiffness_apply_update
 
    !> f(:, n) = sum of the 2 x 2 blocks of row n times u, for the block rows of K; with update,
@@ -274,7 +279,7 @@ contains
       logical, intent(in) :: update
       integer :: r, k, m, n
       real(wp) :: fx, fy
-      !$omp parallel do schedule(static) private(k, m, n, fx, fy) if(size(this%row_node) >= omp_min_nodes)
+      !$omp do schedule(static)
       do r = 1, size(this%row_node)
          fx = 0
          fy = 0
@@ -291,7 +296,7 @@ contains
             w(2, n) = u(2, n) + c1*v(2, n) - c2*minv(n)*fy
          end if
       end do
-      !$omp end parallel do
+      !$omp end do
    end subroutine apply_rows
 
    !> Structured mesh of equal elements, u and f seen as (2, 0:nx, 0:ny): the 9-point stencil on
@@ -306,7 +311,7 @@ contains
       integer :: i, j
       real(wp) :: fx, fy, s(2, 2, -1:1, -1:1)
       s = this%stencil   ! a local copy: the compiler then sees no aliasing and vectorises
-      !$omp parallel do schedule(static) private(i, fx, fy) if((nx + 1)*(ny + 1) >= omp_min_nodes)
+      !$omp do schedule(static)
       do j = 1, ny - 1
          do i = 1, nx - 1
             fx = s(1, 1, -1, -1)*u(1, i - 1, j - 1) + s(1, 2, -1, -1)*u(2, i - 1, j - 1) &
@@ -338,7 +343,8 @@ contains
             end do
          end if
       end do
-      !$omp end parallel do
+      ! no barrier: the boundary rows that follow write other nodes and only read u
+      !$omp end do nowait
    end subroutine apply_structured
 
    !> f = f + K_E u (or f - K_E u with subtract) over the listed elements only.

@@ -99,6 +99,7 @@ contains
          allocate (this%u_mark(2, nnode), this%f_mark(2, nnode))
          this%u_mark = 0
          this%f_mark = 0
+         this%work = 0
          allocate (touches(size(stiff%conn, 2)))
          do e = 1, size(touches)
             touches(e) = any(load%free(:, stiff%conn(:, e)) == 0)
@@ -148,7 +149,7 @@ contains
             this%unew(load%pcomp(p), load%pnode(p)) = this%cnext(load%pcurve(p))
          end do
          ! 3. contact
-         if (contact%active) call contact%enforce(this%u, this%v, this%unew, this%mass, c, dt, this%fc)
+         if (contact%active) call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc)
          ! 4a. external work of the reactions (inertial and damping parts included) and loads,
          !     with the centred increment (u^(n+1) - u^(n-1))/2 = dt vbar
          work = 0
@@ -248,29 +249,71 @@ contains
       class(explicit_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
       type(loading_t), intent(in) :: load
-      real(wp) :: num, den, du
-      integer :: i, j
-      ! work = du_p (the prescribed part of du), then K du_p over the elements that see it
-      do i = 1, this%nnode
-         do j = 1, 2
-            this%work(j, i) = (this%u(j, i) - this%u_mark(j, i))*(1 - load%free(j, i))
-         end do
+      real(wp) :: num, den
+      integer :: p, b
+      ! K du = f_int - f_mark; then subtract K du_p, du_p being zero but on the prescribed dofs
+      call block_difference(2*this%nnode, this%nblock, this%fint, this%f_mark)
+      do p = 1, load%npres
+         this%work(load%pcomp(p), load%pnode(p)) = this%u(load%pcomp(p), load%pnode(p)) &
+                                                   - this%u_mark(load%pcomp(p), load%pnode(p))
       end do
-      this%f_mark = this%fint - this%f_mark                      ! K du
       call stiff%apply_elements(this%pres_elements, this%work, this%f_mark, subtract=.true.)
+      do p = 1, load%npres
+         this%work(load%pcomp(p), load%pnode(p)) = 0
+      end do
+      ! du_f^T K du_f and du_f^T M du_f by blocks; the marks move to (u, f_int)
+      call rayleigh_blocks(2*this%nnode, this%nblock, this%u, this%fint, load%free, this%mdof, &
+                           this%u_mark, this%f_mark, this%partial)
       num = 0
       den = 0
-      do i = 1, this%nnode
-         do j = 1, 2
-            du = (this%u(j, i) - this%u_mark(j, i))*load%free(j, i)
-            num = num + du*this%f_mark(j, i)
-            den = den + this%mass(i)*du*du
-         end do
+      do b = 1, this%nblock
+         num = num + this%partial(1, b)
+         den = den + this%partial(2, b)
       end do
       if (num > 0 .and. den > 0) this%alpha_next = min(2*sqrt(num/den), 2/this%dt)
-      this%u_mark = this%u
-      this%f_mark = this%fint
    end subroutine explicit_update_damping
+
+   !> d = a - d on the flattened dofs.
+   subroutine block_difference(ndof, nblock, a, d)
+      integer, intent(in) :: ndof, nblock
+      real(wp), intent(in) :: a(ndof)
+      real(wp), intent(inout) :: d(ndof)
+      integer :: b, i
+      !$omp parallel do schedule(static) private(i) if(ndof >= 2*omp_min_nodes)
+      do b = 1, nblock
+         do i = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
+            d(i) = a(i) - d(i)
+         end do
+      end do
+      !$omp end parallel do
+   end subroutine block_difference
+
+   !> Per block: sum of du_f kdu and of m du_f^2 with du_f = (u - u_mark) free; then u_mark = u,
+   !> f_mark = f_int. Block sums are added in order by the caller (thread-independent bits).
+   subroutine rayleigh_blocks(ndof, nblock, u, fint, free, mdof, u_mark, f_mark, partial)
+      integer, intent(in) :: ndof, nblock
+      real(wp), intent(in) :: u(ndof), fint(ndof), free(ndof), mdof(ndof)
+      real(wp), intent(inout) :: u_mark(ndof), f_mark(ndof)
+      real(wp), intent(inout) :: partial(3, nblock)
+      integer :: b, i
+      real(wp) :: du, num, den
+      !$omp parallel do schedule(static) private(i, du, num, den) if(ndof >= 2*omp_min_nodes)
+      do b = 1, nblock
+         num = 0
+         den = 0
+         !$omp simd private(du) reduction(+:num, den)
+         do i = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
+            du = (u(i) - u_mark(i))*free(i)
+            num = num + du*f_mark(i)
+            den = den + mdof(i)*du*du
+            u_mark(i) = u(i)
+            f_mark(i) = fint(i)
+         end do
+         partial(1, b) = num
+         partial(2, b) = den
+      end do
+      !$omp end parallel do
+   end subroutine rayleigh_blocks
 
    !> Out-of-balance force on the free dofs at t_n (contact forces included), relative to the
    !> largest of the reactions, the loads and the contact forces (SPEC section 5).
@@ -281,6 +324,8 @@ contains
       integer :: i, j
       rfree = 0
       scale = 0
+      ! max is exact in any order: the same bits for any number of threads
+      !$omp parallel do schedule(static) private(j, r) reduction(max:rfree, scale) if(this%nnode >= omp_min_nodes)
       do i = 1, this%nnode
          do j = 1, 2
             r = this%fext(j, i) - this%fint(j, i) + this%fc(j, i)
@@ -289,6 +334,7 @@ contains
             scale = max(scale, abs(r*(1 - load%free(j, i))), abs(this%fext(j, i)), abs(this%fc(j, i)))
          end do
       end do
+      !$omp end parallel do
       if (scale > 0) then
          rel = rfree/scale
       else
