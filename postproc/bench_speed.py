@@ -17,6 +17,8 @@ and ratios of two things measured side by side.
 import argparse
 import json
 import statistics
+
+import numpy as np
 import subprocess
 import sys
 import time
@@ -35,22 +37,27 @@ def parse_levels(text):
     return list(range(int(a), int(b or a) + 1))
 
 
-def throughput(exe, out, level, threads, repeats):
-    """Median element-steps/s of the step loop over `repeats` runs of a fixed number of steps."""
+def throughput(exe, out, level, repeats):
+    """Element-steps/s of the step loop with 1 and 2 threads over `repeats` runs of a fixed number
+    of steps, the two thread counts interleaved (1, 2, 1, 2, ...) so that both see the same
+    machine load; medians, and the median of the per-pair ratios."""
     nel = 39 * 4**level
     steps = max(200, int(3e8 / nel))          # about 3e8 element-steps per run
-    rates = []
+    rates = {1: [], 2: []}
     for i in range(repeats):
-        h5 = out / f"tp_k{level}_t{threads}_{i}.h5"
-        res = run(exe, DECK, h5, {"mesh:level": level, "solver:max_steps": steps, "solver:t_end": 1.0,
-                                  "solver:tol_residual": 1e-300, "solver:power_iterations": 0,
-                                  "output:history_interval": steps, "output:xdmf": False}, threads=threads)
-        if res.returncode != 0:
-            sys.exit(f"throughput run failed: {res.stderr}")
-        with Run(h5) as r:
-            rates.append(int(r.attrs["steps"]) * int(r.attrs["element_count"]) / float(r.attrs["time_steps_seconds"]))
-        h5.unlink()
-    return statistics.median(rates), steps
+        for threads in (1, 2):
+            h5 = out / f"tp_k{level}_t{threads}_{i}.h5"
+            res = run(exe, DECK, h5, {"mesh:level": level, "solver:max_steps": steps, "solver:t_end": 1.0,
+                                      "solver:tol_residual": 1e-300, "solver:power_iterations": 0,
+                                      "output:history_interval": steps, "output:xdmf": False}, threads=threads)
+            if res.returncode != 0:
+                sys.exit(f"throughput run failed: {res.stderr}")
+            with Run(h5) as r:
+                rates[threads].append(int(r.attrs["steps"]) * int(r.attrs["element_count"])
+                                      / float(r.attrs["time_steps_seconds"]))
+            h5.unlink()
+    ratios = [b / a for a, b in zip(rates[1], rates[2])]
+    return statistics.median(rates[1]), statistics.median(rates[2]), statistics.median(ratios), steps
 
 
 def end_state(exe, out, level, threads, repeats, sets):
@@ -92,7 +99,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--exe", help="contact2d executable (default build/bin/contact2d)")
     ap.add_argument("--levels", default="3-6", help="mesh levels (default 3-6)")
-    ap.add_argument("--repeats", type=int, default=3, help="runs per timing (median; default 3)")
+    ap.add_argument("--repeats", type=int, default=7, help="runs per timing (median; default 7)")
     ap.add_argument("--out", default="study/bench", help="work directory")
     ap.add_argument("--no-getfem", action="store_true", help="skip the GetFEM reference")
     args = ap.parse_args()
@@ -103,13 +110,11 @@ def main():
     rows = []
     for k in parse_levels(args.levels):
         row = {"level": k, "elements": 39 * 4**k}
-        row["rate_1"], row["throughput_steps"] = throughput(exe, out, k, 1, args.repeats)
-        row["rate_2"], _ = throughput(exe, out, k, 2, args.repeats)
-        row["speedup"] = row["rate_2"] / row["rate_1"]
+        row["rate_1"], row["rate_2"], row["speedup"], row["throughput_steps"] = throughput(exe, out, k, args.repeats)
         threads = 2 if row["speedup"] > 1 else 1
         row["threads"] = threads
         print(f"k={k} ({row['elements']} elements): {row['rate_1']:.3e} element-steps/s on 1 thread, "
-              f"{row['rate_2']:.3e} on 2 ({row['speedup']:.2f}x)", flush=True)
+              f"{row['rate_2']:.3e} on 2 (median ratio {row['speedup']:.2f}x)", flush=True)
         # Tresca first; if GetFEM cannot do it, both codes solve the frictionless variant
         for friction in ("tresca", "frictionless"):
             sets = {} if friction == "tresca" else {"contact:friction": "frictionless", "contact:threshold": 0.0}
@@ -121,6 +126,15 @@ def main():
             print(f"   GetFEM {friction}: {why}; trying the frictionless variant")
         row.update(friction=friction, end_wall=wall, end_steps=steps, getfem_wall=gf_wall, getfem_process=gf_proc,
                    ratio=(wall / gf_wall) if gf_wall else None)
+        # relaxation after the ramp against 1/2 (omega_max/omega_1) ln(1/tol), the step count of
+        # optimally damped relaxation with dt = 2/omega_max (omega_1 = final alpha / 2)
+        with Run(h5) as r:
+            dt, wmax = float(r.attrs["dt"]), float(r.attrs["omega_max_power"])
+            w1 = float(r.history("damping_alpha")[-1]) / 2
+            ramp = int(round(float(r.deck["solver"]["t_ramp"]) / dt))
+            tol = float(r.deck["solver"]["tol_residual"])
+        row.update(ramp_steps=ramp, relax_steps=steps - ramp, relax_estimate=0.5 * wmax / w1 * np.log(1 / tol),
+                   omega_ratio=wmax / w1)
         print(f"   end state ({friction}, {threads} thread(s)): {steps} steps, {wall:.3f} s" +
               (f"; GetFEM static {gf_wall:.3f} s (process {gf_proc:.2f} s): explicit/static = {wall / gf_wall:.2f}"
                if gf_wall else ""), flush=True)
@@ -131,6 +145,11 @@ def main():
         gf = f"{r['getfem_wall']:10.3f}  {r['ratio']:15.2f}" if r["getfem_wall"] else f"{'-':>10s}  {'-':>15s}"
         print(f" {r['level']:5d} {r['elements']:9d} {r['rate_1']:10.3e} {r['rate_2']:10.3e} {r['speedup']:7.2f}x | "
               f"{r['end_steps']:12d} {r['end_wall']:9.3f} {gf}")
+    print("\nrelaxation after the ramp (tol 1e-8) against 1/2 (omega_max/omega_1) ln(1/tol):")
+    for r in rows:
+        print(f"  k={r['level']}: omega_max/omega_1 = {r['omega_ratio']:.0f}, {r['ramp_steps']} ramp steps, "
+              f"{r['relax_steps']} relaxation steps, estimate {r['relax_estimate']:.0f} "
+              f"(ratio {r['relax_steps'] / r['relax_estimate']:.2f})")
     print("\ntargets (issue 5):")
     for r in rows:
         if r["level"] == 4:
