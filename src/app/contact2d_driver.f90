@@ -275,7 +275,7 @@ contains
             write (output_unit, '(a)') '; nowhere negative'
          end if
          write (output_unit, '(a)') ' penetration         '//sci(c%penetration(solver%u))//' mm (max'// &
-            merge(' per dual cell)', ' per node)     ', c%multiplier_name() == 'P0')
+            trim(merge(' per dual cell)', ' per node)     ', c%multiplier_name() == 'P0'))
       end associate
    end subroutine contact_summary
 
