@@ -9,6 +9,7 @@
 !> w_S = 0 to round-off and w >= -tol on the inactive set, tol = 1e-14 max|b|.
 module contact2d_lcp
    use contact2d_kinds, only: wp
+   use contact2d_strings, only: str
    implicit none
    private
    public :: lcp_t
@@ -136,8 +137,8 @@ contains
          this%active(flip) = .not. this%active(flip)
       end do
       stat = 1
-      errmsg = 'P0 contact LCP: no convergence after '//itoa(this%iterations)// &
-               ' active-set iterations (n = '//itoa(this%n)//')'
+      errmsg = 'P0 contact LCP: no convergence after '//str(this%iterations)// &
+               ' active-set iterations (n = '//str(this%n)//')'
    end subroutine lcp_solve
 
    !> mu on the current active set (zero elsewhere) and w = A mu - b.
@@ -171,7 +172,7 @@ contains
             call dpbtrf('U', this%na, this%kd, this%fab, this%kd + 1, info)
             if (info /= 0) then
                stat = 1
-               errmsg = 'P0 contact LCP: LAPACK dpbtrf failed (info = '//itoa(info)//')'
+               errmsg = 'P0 contact LCP: LAPACK dpbtrf failed (info = '//str(info)//')'
                return
             end if
          end if
@@ -184,7 +185,7 @@ contains
          call dpbtrs('U', this%na, this%kd, 1, this%fab, this%kd + 1, this%rhs, this%n, info)
          if (info /= 0) then
             stat = 1
-            errmsg = 'P0 contact LCP: LAPACK dpbtrs failed (info = '//itoa(info)//')'
+            errmsg = 'P0 contact LCP: LAPACK dpbtrs failed (info = '//str(info)//')'
             return
          end if
          mu(this%idx(1:this%na)) = this%rhs(1:this%na)
@@ -192,12 +193,4 @@ contains
       call this%matvec(mu, this%w)
       this%w = this%w - b
    end subroutine solve_on_set
-
-   pure function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 end module contact2d_lcp
