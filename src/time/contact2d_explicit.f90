@@ -14,6 +14,7 @@ module contact2d_explicit
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    use contact2d_loading, only: loading_t
    use contact2d_contact, only: contact_t
+   use contact2d_sweep, only: sweep_stencils, sweep_parts, sweep_step
    implicit none
    private
    public :: explicit_t, damping_none, damping_given, damping_auto
@@ -38,12 +39,19 @@ module contact2d_explicit
       real(wp), allocatable :: u(:, :)     !< u^n [mm]
       real(wp), allocatable :: v(:, :)     !< v^(n-1/2) [mm/s]
       real(wp), allocatable :: unew(:, :)  !< u~, then u^(n+1) [mm]
+      real(wp), allocatable :: uold(:, :)  !< u^(n-1) while the corrector is pending [mm]
+      !> the corrector of the last step is still to be done (it is fused into the next sweep)
+      logical :: pending = .false.
+      real(wp) :: alpha_prev = 0           !< damping of the last step (pending corrector)
+      real(wp) :: stencils(2, 2, -1:1, -1:1, 3, 3) = 0   !< structured-mesh stencils (sweep)
+      real(wp), allocatable :: rowsum(:, :)  !< per-row sums of the sweep (3, sweep_parts)
       real(wp), allocatable :: fint(:, :)  !< K u^n of the last step [N]
       real(wp), allocatable :: fext(:, :)  !< f_ext(t_n) of the last step [N]
       real(wp), allocatable :: fc(:, :)    !< contact force on the body of the last step [N]
       real(wp), allocatable :: mass(:)     !< lumped mass [t]
       real(wp), allocatable :: minv(:)     !< 1 / lumped mass [1/t]
       real(wp), allocatable :: mdof(:)     !< lumped mass per dof, (2 nnode) [t]
+      real(wp), allocatable :: minvdof(:)  !< 1 / lumped mass per dof, (2 nnode) [1/t]
       integer :: nblock = 0                !< blocks of block_size nodes
       real(wp), allocatable :: partial(:, :)  !< per-block sums (3, nblock)
       real(wp), allocatable :: cval(:)     !< curve values at t_n
@@ -86,11 +94,14 @@ contains
       this%alpha_next = this%alpha
       this%damping_interval = damping_interval
       allocate (this%u(2, nnode), this%v(2, nnode), this%unew(2, nnode), this%fint(2, nnode), &
-                this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode))
-      this%u = 0; this%v = 0; this%unew = 0; this%fint = 0; this%fext = 0; this%fc = 0
+                this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode), this%uold(2, nnode))
+      this%u = 0; this%v = 0; this%unew = 0; this%fint = 0; this%fext = 0; this%fc = 0; this%uold = 0
+      if (stiff%structured) call sweep_stencils(stiff%ke(:, :, 1), this%stencils)
+      allocate (this%rowsum(3, sweep_parts(stiff)))
       this%mass = stiff%mass
       this%minv = 1/stiff%mass
       this%mdof = reshape(spread(stiff%mass, 1, 2), [2*nnode])
+      this%minvdof = 1/this%mdof
       this%nblock = (nnode + block_size - 1)/block_size
       allocate (this%partial(3, this%nblock))
       allocate (this%cval(load%ncurve), this%cnext(load%ncurve))
@@ -127,7 +138,10 @@ contains
          a1 = 1 - 0.5_wp*this%alpha*dt
          a2inv = 1/(1 + 0.5_wp*this%alpha*dt)
          c = dt*dt*a2inv
-         call stiff%apply_update(this%u, this%fint, this%v, this%minv, dt*a2inv*a1, c, this%unew)
+         ! one sweep: the corrector of the last step (if pending), K u^n and the predictor
+         call sweep_step(stiff, this%stencils, this%u, this%uold, this%v, this%fint, this%minv, this%mass, &
+                         this%mdof, this%minvdof, dt*a2inv*a1, c, 1/dt, this%pending, this%unew, this%rowsum)
+         if (this%pending) call add_energies(this, this%rowsum, this%alpha_prev, dt)
          ! automatic damping: a new alpha from (u^n, K u^n), used from the next step on
          if (this%damping == damping_auto) then
             if (mod(this%step, int(this%damping_interval, i8)) == 0) call this%update_damping(stiff, load)
@@ -171,43 +185,60 @@ contains
          end do
          this%external_work = this%external_work + work
          this%work_in = this%work_in + abs(work)
-         ! 4b. velocities and energies; u^(n+1) becomes u (the arrays are swapped, not copied)
-         call corrector(this, dt)
-         call move_alloc(this%u, swap)
+         ! 4b. velocities and energies: pending, done in the next sweep (or below, on return);
+         !     u^(n+1) becomes u, u^n becomes uold (the arrays are rotated, not copied)
+         call move_alloc(this%uold, swap)
+         call move_alloc(this%u, this%uold)
          call move_alloc(this%unew, this%u)
          call move_alloc(swap, this%unew)
+         this%pending = .true.
+         this%alpha_prev = this%alpha
          this%step = this%step + 1
          this%time = real(this%step, wp)*dt
-         ! blow-up guard: runaway kinetic energy or non-finite values
+         ! blow-up guard: runaway kinetic energy or non-finite values (the energies of the
+         ! sweep lag one step)
          if (.not. ieee_is_finite(this%kinetic) .or. &
              this%kinetic > blowup_ratio*max(this%work_in, tiny(1.0_wp))) then
             this%blown_up = .true.
-            return
+            exit
          end if
       end do
+      ! on return the state is complete: v^(n+1/2) and the energies of the last step
+      if (this%pending) call corrector(this, dt)
+      if (.not. ieee_is_finite(this%kinetic) .or. &
+          this%kinetic > blowup_ratio*max(this%work_in, tiny(1.0_wp))) this%blown_up = .true.
    end subroutine explicit_advance
 
 
-   !> v^(n+1/2) = (u^(n+1) - u^n)/dt; kinetic, strain and damping energies.
+   !> The pending corrector on its own (u is u^(n+1), uold u^n): v^(n+1/2) = (u^(n+1) - u^n)/dt;
+   !> kinetic, strain and damping energies.
    subroutine corrector(this, dt)
       type(explicit_t), intent(inout) :: this
       real(wp), intent(in) :: dt
+      call corrector_blocks(2*this%nnode, this%nblock, dt, this%u, this%uold, this%fint, this%mdof, &
+                            this%v, this%partial)
+      call add_energies(this, this%partial, this%alpha_prev, dt)
+   end subroutine corrector
+
+   !> Energies of the corrector from its partial sums (m v^2, m vbar^2, u . K u), added in order.
+   subroutine add_energies(this, partial, alpha, dt)
+      type(explicit_t), intent(inout) :: this
+      real(wp), intent(in) :: partial(:, :), alpha, dt
       real(wp) :: ekin, edamp, estrain
       integer :: b
-      call corrector_blocks(2*this%nnode, this%nblock, dt, this%unew, this%u, this%fint, this%mdof, &
-                            this%v, this%partial)
       ekin = 0
       edamp = 0
       estrain = 0
-      do b = 1, this%nblock
-         ekin = ekin + this%partial(1, b)
-         edamp = edamp + this%partial(2, b)
-         estrain = estrain + this%partial(3, b)
+      do b = 1, size(partial, 2)
+         ekin = ekin + partial(1, b)
+         edamp = edamp + partial(2, b)
+         estrain = estrain + partial(3, b)
       end do
       this%kinetic = 0.5_wp*ekin
       this%strain = 0.5_wp*estrain
-      this%damping_dissipation = this%damping_dissipation + this%alpha*dt*edamp
-   end subroutine corrector
+      this%damping_dissipation = this%damping_dissipation + alpha*dt*edamp
+      this%pending = .false.
+   end subroutine add_energies
 
    !> The corrector on the flattened dofs, block by block. Within a block the sums are vector
    !> reductions (OpenMP simd: their order is fixed by the compiled code) and the blocks are
