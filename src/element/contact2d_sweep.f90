@@ -58,7 +58,8 @@ contains
    end function sweep_parts
 
    !> One sweep: if pending, first the corrector of the previous step at each node,
-   !>    v = (u - uold)/dt,  partial = (sum m v^2, sum m ((v + v_old)/2)^2, sum u . f_old);
+   !>    v = (u - uold)/dt,  partial = (sum m v^2, sum m ((v + v_old)/2)^2, sum u . f_old,
+   !>    sum m (v - v_old)^2);
    !> then f = K u and w = u + c1 v - c2 M^-1 f.
    subroutine sweep_step(stiff, s, u, uold, v, f, minv, mass, mdof, minvdof, c1, c2, rdt, pending, w, partial)
       type(stiffness_t), intent(in) :: stiff
@@ -72,7 +73,7 @@ contains
       real(wp), intent(in) :: c1, c2, rdt
       logical, intent(in) :: pending
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
-      real(wp), intent(inout) :: partial(:, :)   !< (3, sweep_parts)
+      real(wp), intent(inout) :: partial(:, :)   !< (4, sweep_parts)
       if (stiff%structured) then
          call sweep_grid(stiff%nx, stiff%ny, s, u, uold, v, f, mdof, minvdof, c1, c2, rdt, pending, w, partial, &
                          stiff%nnode >= omp_min_nodes)
@@ -88,7 +89,7 @@ contains
       real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
       real(wp), intent(in) :: c1, c2, rdt
       logical, intent(in) :: pending, par
-      real(wp), intent(inout) :: partial(3, 0:ny)
+      real(wp), intent(inout) :: partial(4, 0:ny)
       integer :: j, rt
       real(wp) :: cv(0:7, -3:3, 3, 3)
       call flat_coefficients(s, cv)
@@ -113,23 +114,25 @@ contains
       real(wp), intent(in) :: cv(0:7, -3:3, 3), c1, c2, rdt
       real(wp), intent(inout) :: v(0:n - 1), f(0:n - 1), w(0:n - 1)
       logical, intent(in) :: pending
-      real(wp), intent(out) :: part(3)
+      real(wp), intent(out) :: part(4)
       integer :: b, l, p, nb
-      real(wp) :: c(0:7, -3:3, 3), sm, s0, sp, vn, ek, ed, es
+      real(wp) :: c(0:7, -3:3, 3), sm, s0, sp, vn, ek, ed, es, ea
       ek = 0
       ed = 0
       es = 0
+      ea = 0
       if (pending) then
-         !$omp simd private(vn) reduction(+:ek, ed, es)
+         !$omp simd private(vn) reduction(+:ek, ed, es, ea)
          do p = 0, n - 1
             vn = (u0(p) - uo(p))*rdt
             ek = ek + m(p)*vn*vn
             ed = ed + m(p)*(0.5_wp*(vn + v(p)))**2
             es = es + u0(p)*f(p)
+            ea = ea + m(p)*(vn - v(p))**2
             v(p) = vn
          end do
       end if
-      part = [ek, ed, es]
+      part = [ek, ed, es, ea]
       c = cv   ! a local copy: no aliasing, the coefficients stay in registers
       nb = (n - 4)/8
       do b = 0, nb - 1
@@ -220,13 +223,14 @@ contains
       real(wp), intent(inout) :: v(:, :), f(:, :), w(:, :), partial(:, :)
       logical, intent(in) :: pending
       integer :: c, r, k, m, n
-      real(wp) :: fx, fy, vx, vy, ek, ed, es
+      real(wp) :: fx, fy, vx, vy, ek, ed, es, ea
       !$omp parallel do schedule(runtime) if(stiff%nnode >= omp_min_nodes) &
-      !$omp private(r, k, m, n, fx, fy, vx, vy, ek, ed, es)
+      !$omp private(r, k, m, n, fx, fy, vx, vy, ek, ed, es, ea)
       do c = 1, size(partial, 2)
          ek = 0
          ed = 0
          es = 0
+         ea = 0
          do r = (c - 1)*chunk_rows + 1, min(c*chunk_rows, size(stiff%row_node))
             n = stiff%row_node(r)
             if (pending) then
@@ -235,6 +239,7 @@ contains
                ek = ek + mass(n)*(vx*vx + vy*vy)
                ed = ed + mass(n)*((0.5_wp*(vx + v(1, n)))**2 + (0.5_wp*(vy + v(2, n)))**2)
                es = es + u(1, n)*f(1, n) + u(2, n)*f(2, n)
+               ea = ea + mass(n)*((vx - v(1, n))**2 + (vy - v(2, n))**2)
                v(1, n) = vx
                v(2, n) = vy
             else
@@ -253,7 +258,7 @@ contains
             w(1, n) = u(1, n) + c1*vx - c2*minv(n)*fx
             w(2, n) = u(2, n) + c1*vy - c2*minv(n)*fy
          end do
-         partial(:, c) = [ek, ed, es]
+         partial(:, c) = [ek, ed, es, ea]
       end do
       !$omp end parallel do
    end subroutine sweep_rows

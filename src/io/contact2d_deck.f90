@@ -93,6 +93,10 @@ module contact2d_deck
       real(wp) :: tol_kinetic = 1.0e-12_wp  !< kinetic / strain energy at convergence
       integer :: check_interval = 10      !< steps between convergence checks
       integer :: power_iterations = 100   !< power iterations for the true omega_max (0: skip)
+      !> 'element': dt from the element bound; 'power': from the power-iteration estimate of the
+      !> true limit, with a growing-mode guard falling back to the element bound (issue 13)
+      character(len=8) :: dt_limit = 'element'
+      real(wp) :: mass_scaling = 0        !< target stable step [s] of mass scaling; 0: off (issue 13)
    end type solver_cfg_t
 
    !> &output: what is written and how often.
@@ -642,13 +646,15 @@ contains
       type(solver_cfg_t), intent(inout) :: cfg
       integer, intent(inout) :: stat
       character(len=:), allocatable, intent(inout) :: errmsg
-      real(wp) :: dt, dt_factor, t_ramp, t_end, alpha, tol_residual, tol_kinetic
+      real(wp) :: dt, dt_factor, t_ramp, t_end, alpha, tol_residual, tol_kinetic, mass_scaling
       logical :: allow_unstable
       integer :: max_steps, damping_interval, check_interval, power_iterations, ios, i
-      character(len=8) :: damping
+      character(len=8) :: damping, dt_limit
       character(len=256) :: msg
       namelist /solver/ dt, dt_factor, allow_unstable, t_ramp, t_end, max_steps, damping, &
-         alpha, damping_interval, tol_residual, tol_kinetic, check_interval, power_iterations
+         alpha, damping_interval, tol_residual, tol_kinetic, check_interval, power_iterations, &
+         dt_limit, mass_scaling
+      dt_limit = cfg%dt_limit; mass_scaling = cfg%mass_scaling
       dt = cfg%dt; dt_factor = cfg%dt_factor; allow_unstable = cfg%allow_unstable
       t_ramp = cfg%t_ramp; t_end = cfg%t_end; max_steps = cfg%max_steps
       damping = cfg%damping; alpha = cfg%alpha; damping_interval = cfg%damping_interval
@@ -667,6 +673,7 @@ contains
       cfg%damping = damping; cfg%alpha = alpha; cfg%damping_interval = damping_interval
       cfg%tol_residual = tol_residual; cfg%tol_kinetic = tol_kinetic
       cfg%check_interval = check_interval; cfg%power_iterations = power_iterations
+      cfg%dt_limit = dt_limit; cfg%mass_scaling = mass_scaling
    end subroutine read_solver
 
    subroutine read_output(blk, ovr, where, cfg, stat, errmsg)
@@ -781,6 +788,25 @@ contains
          end if
          if (s%power_iterations < 0) then
             errmsg = 'solver:power_iterations = '//str(s%power_iterations)//' must be >= 0'
+            return
+         end if
+         s%dt_limit = lower(s%dt_limit)
+         if (.not. any(s%dt_limit == [character(len=8) :: 'element', 'power'])) then
+            errmsg = "solver:dt_limit = '"//trim(s%dt_limit)//"' is not one of 'element', 'power'"
+            return
+         end if
+         if (s%dt_limit == 'power' .and. s%power_iterations == 0) then
+            errmsg = "solver:dt_limit = 'power' needs solver:power_iterations > 0"
+            return
+         end if
+         if (.not. s%mass_scaling >= 0) then
+            errmsg = 'solver:mass_scaling = '//str(s%mass_scaling)//' must be >= 0 (target time step, s; 0: off)'
+            return
+         end if
+         ! fictitious masses change the dynamics: quasi-static runs (automatic damping) only
+         if (s%mass_scaling > 0 .and. s%damping /= 'auto') then
+            errmsg = "solver:mass_scaling = "//str(s%mass_scaling)//" is refused for a dynamic run (damping = '"// &
+                     trim(s%damping)//"'); it needs damping = 'auto' (quasi-static relaxation)"
             return
          end if
       end associate
@@ -1038,7 +1064,8 @@ contains
                 kv('damping_interval', str(s%damping_interval))// &
                 kv('tol_residual', str(s%tol_residual))//kv('tol_kinetic', str(s%tol_kinetic))// &
                 kv('check_interval', str(s%check_interval))// &
-                kv('power_iterations', str(s%power_iterations))//'/'//nl
+                kv('power_iterations', str(s%power_iterations))//kv('dt_limit', q(s%dt_limit))// &
+                kv('mass_scaling', str(s%mass_scaling))//'/'//nl
       end associate
       text = text//'&output'//nl//kv('history_interval', str(deck%output%history_interval))// &
              kv('xdmf', str(deck%output%xdmf))//kv('progress', str(deck%output%progress))

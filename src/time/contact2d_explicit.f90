@@ -25,6 +25,12 @@ module contact2d_explicit
    real(wp), parameter :: blowup_ratio = 1.0e3_wp
    !> Nodes per block of the node loops (fixed, so sums do not depend on the thread count).
    integer, parameter :: block_size = 1024
+   !> Growing-mode guard: rise factor per step of the alternating energy, rises in a row and
+   !> alternating ratio that mean a fast-growing mode; steps between the checks of the slow
+   !> test and its rises in a row under constant loads.
+   integer, parameter :: guard_interval = 10
+   real(wp), parameter :: guard_factor = 1.05_wp, guard_ratio = 2.0_wp
+   integer, parameter :: guard_rises = 12, guard_kin_rises = 30
 
    !> State and settings of the explicit integrator.
    type :: explicit_t
@@ -53,7 +59,7 @@ module contact2d_explicit
       real(wp), allocatable :: mdof(:)     !< lumped mass per dof, (2 nnode) [t]
       real(wp), allocatable :: minvdof(:)  !< 1 / lumped mass per dof, (2 nnode) [1/t]
       integer :: nblock = 0                !< blocks of block_size nodes
-      real(wp), allocatable :: partial(:, :)  !< per-block sums (3, nblock)
+      real(wp), allocatable :: partial(:, :)  !< per-block sums (4, nblock)
       real(wp), allocatable :: cval(:)     !< curve values at t_n
       real(wp), allocatable :: cnext(:)    !< curve values at t_(n+1)
       ! automatic damping: u and K u at the last estimate
@@ -66,12 +72,25 @@ module contact2d_explicit
       real(wp) :: work_in = 0              !< sum of |external work increments|
       real(wp) :: damping_dissipation = 0
       logical :: blown_up = .false.
+      !> sum m (v^(n+1/2) - v^(n-1/2))^2 / sum m (v^(n+1/2))^2 of the last corrector: close to 4
+      !> for a mode that changes sign every step (the one that grows when dt is too long)
+      real(wp) :: alternating = 0
+      real(wp) :: alternating_energy = 0   !< 1/2 sum m (v^(n+1/2) - v^(n-1/2))^2 [mJ]
+      ! growing-mode guard (issue 13, docs/deck.md solver:dt_limit)
+      logical :: guard = .false.           !< watch for a growing mode
+      logical :: growing = .false.         !< a growing mode was detected (advance returned)
+      real(wp) :: guard_after = 0          !< the energy test starts at this time (end of loading) [s]
+      real(wp) :: guard_alt = 0, guard_kin = 0   !< values at the last guard check
+      integer :: guard_rise = 0, guard_kin_rise = 0   !< consecutive rises
+      real(wp) :: time0 = 0                !< time at step0 (dt changes) [s]
+      integer(i8) :: step0 = 0             !< step at the last change of dt
    contains
       procedure :: init => explicit_init
       procedure :: advance => explicit_advance
       procedure :: update_damping => explicit_update_damping
       procedure :: residual => explicit_residual
       procedure :: balance_error => explicit_balance_error
+      procedure :: set_dt => explicit_set_dt
    end type explicit_t
 
 contains
@@ -97,13 +116,13 @@ contains
                 this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode), this%uold(2, nnode))
       this%u = 0; this%v = 0; this%unew = 0; this%fint = 0; this%fext = 0; this%fc = 0; this%uold = 0
       if (stiff%structured) call sweep_stencils(stiff%ke(:, :, 1), this%stencils)
-      allocate (this%rowsum(3, sweep_parts(stiff)))
+      allocate (this%rowsum(4, sweep_parts(stiff)))
       this%mass = stiff%mass
       this%minv = 1/stiff%mass
       this%mdof = reshape(spread(stiff%mass, 1, 2), [2*nnode])
       this%minvdof = 1/this%mdof
       this%nblock = (nnode + block_size - 1)/block_size
-      allocate (this%partial(3, this%nblock))
+      allocate (this%partial(4, this%nblock))
       allocate (this%cval(load%ncurve), this%cnext(load%ncurve))
       call load%curve_values(0.0_wp, this%cnext)
       if (damping == damping_auto) then
@@ -194,13 +213,17 @@ contains
          this%pending = .true.
          this%alpha_prev = this%alpha
          this%step = this%step + 1
-         this%time = real(this%step, wp)*dt
+         this%time = this%time0 + real(this%step - this%step0, wp)*dt
          ! blow-up guard: runaway kinetic energy or non-finite values (the energies of the
          ! sweep lag one step)
          if (.not. ieee_is_finite(this%kinetic) .or. &
              this%kinetic > blowup_ratio*max(this%work_in, tiny(1.0_wp))) then
             this%blown_up = .true.
             exit
+         end if
+         if (this%guard) then
+            call guard_check(this)
+            if (this%growing) exit
          end if
       end do
       ! on return the state is complete: v^(n+1/2) and the energies of the last step
@@ -209,6 +232,45 @@ contains
           this%kinetic > blowup_ratio*max(this%work_in, tiny(1.0_wp))) this%blown_up = .true.
    end subroutine explicit_advance
 
+
+   !> Growing-mode guard, every step: a mode above the stability limit changes sign every step
+   !> and grows geometrically, so its alternating energy rises at every step (guard_rises in a
+   !> row by guard_factor or more) and soon dominates the kinetic energy (alternating ratio
+   !> above guard_ratio; 4 for a pure sign-changing mode, near 0 for smooth motion); once the loads are constant and the damping takes energy out of
+   !> every mode, a slowly growing mode shows as alternating energy that rises at every check
+   !> of guard_interval steps (guard_kin_rises in a row).
+   subroutine guard_check(this)
+      type(explicit_t), intent(inout) :: this
+      if (this%alternating_energy > guard_factor*this%guard_alt .and. this%guard_alt > 0) then
+         this%guard_rise = this%guard_rise + 1
+      else
+         this%guard_rise = 0
+      end if
+      this%guard_alt = this%alternating_energy
+      if (mod(this%step, int(guard_interval, i8)) == 0) then
+         if (this%time > this%guard_after .and. this%alternating_energy > this%guard_kin .and. this%guard_kin > 0) then
+            this%guard_kin_rise = this%guard_kin_rise + 1
+         else
+            this%guard_kin_rise = 0
+         end if
+         this%guard_kin = this%alternating_energy
+      end if
+      this%growing = (this%guard_rise >= guard_rises .and. this%alternating > guard_ratio) .or. &
+                     this%guard_kin_rise >= guard_kin_rises
+   end subroutine guard_check
+
+   !> A new time step from the next step on (the growing-mode fallback); the guard is reset.
+   subroutine explicit_set_dt(this, dt)
+      class(explicit_t), intent(inout) :: this
+      real(wp), intent(in) :: dt
+      this%time0 = this%time
+      this%step0 = this%step
+      this%dt = dt
+      this%alpha_next = min(this%alpha_next, 2/dt)
+      this%growing = .false.
+      this%guard_rise = 0
+      this%guard_kin_rise = 0
+   end subroutine explicit_set_dt
 
    !> The pending corrector on its own (u is u^(n+1), uold u^n): v^(n+1/2) = (u^(n+1) - u^n)/dt;
    !> kinetic, strain and damping energies.
@@ -224,16 +286,20 @@ contains
    subroutine add_energies(this, partial, alpha, dt)
       type(explicit_t), intent(inout) :: this
       real(wp), intent(in) :: partial(:, :), alpha, dt
-      real(wp) :: ekin, edamp, estrain
+      real(wp) :: ekin, edamp, estrain, ealt
       integer :: b
       ekin = 0
       edamp = 0
       estrain = 0
+      ealt = 0
       do b = 1, size(partial, 2)
          ekin = ekin + partial(1, b)
          edamp = edamp + partial(2, b)
          estrain = estrain + partial(3, b)
+         ealt = ealt + partial(4, b)
       end do
+      this%alternating = merge(ealt/ekin, 0.0_wp, ekin > 0)
+      this%alternating_energy = 0.5_wp*ealt
       this%kinetic = 0.5_wp*ekin
       this%strain = 0.5_wp*estrain
       this%damping_dissipation = this%damping_dissipation + alpha*dt*edamp
@@ -248,25 +314,27 @@ contains
       real(wp), intent(in) :: dt
       real(wp), intent(in) :: unew(ndof), u(ndof), fint(ndof), mdof(ndof)
       real(wp), intent(inout) :: v(ndof)
-      real(wp), intent(out) :: partial(3, nblock)
+      real(wp), intent(out) :: partial(4, nblock)
       integer :: b, d
-      real(wp) :: rdt, vn, vb, ek, ed, es
+      real(wp) :: rdt, vn, vb, ek, ed, es, ea
       rdt = 1/dt
-      !$omp parallel do schedule(static) private(d, vn, vb, ek, ed, es) if(ndof >= 2*omp_min_nodes)
+      !$omp parallel do schedule(static) private(d, vn, vb, ek, ed, es, ea) if(ndof >= 2*omp_min_nodes)
       do b = 1, nblock
          ek = 0
          ed = 0
          es = 0
-         !$omp simd private(vn, vb) reduction(+:ek, ed, es)
+         ea = 0
+         !$omp simd private(vn, vb) reduction(+:ek, ed, es, ea)
          do d = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
             vn = (unew(d) - u(d))*rdt
             vb = 0.5_wp*(vn + v(d))
             ek = ek + mdof(d)*vn*vn
             ed = ed + mdof(d)*vb*vb
             es = es + unew(d)*fint(d)
+            ea = ea + mdof(d)*(vn - v(d))**2
             v(d) = vn
          end do
-         partial(:, b) = [ek, ed, es]
+         partial(:, b) = [ek, ed, es, ea]
       end do
       !$omp end parallel do
    end subroutine corrector_blocks
@@ -325,7 +393,7 @@ contains
       integer, intent(in) :: ndof, nblock
       real(wp), intent(in) :: u(ndof), fint(ndof), free(ndof), mdof(ndof)
       real(wp), intent(inout) :: u_mark(ndof), f_mark(ndof)
-      real(wp), intent(inout) :: partial(3, nblock)
+      real(wp), intent(inout) :: partial(4, nblock)
       integer :: b, i
       real(wp) :: du, num, den
       !$omp parallel do schedule(static) private(i, du, num, den) if(ndof >= 2*omp_min_nodes)
