@@ -10,6 +10,8 @@ module contact2d_driver
    use contact2d_model, only: model_t, model_build
    use contact2d_explicit, only: explicit_t
    use contact2d_output, only: output_t
+   use contact2d_threads, only: thread_tuner_t
+   use contact2d_stiffness, only: omp_min_nodes
    implicit none
    private
    public :: driver_main
@@ -32,6 +34,7 @@ contains
       logical :: converged, done, interactive, exists, sampled
       real(wp), allocatable :: extra(:, :)
       real(wp) :: dt_initial
+      type(thread_tuner_t) :: tuner
       integer(i8) :: fallback_step
 
       call system_clock(clock0, rate)
@@ -119,6 +122,7 @@ contains
       end if
       call out%sample(solver, model, 0.0_wp)
 
+      call tuner%init(model%stiff%nnode >= omp_min_nodes)
       call system_clock(clock1)
       timings = 0
       timings(1) = real(clock1 - clock0, wp)/rate
@@ -141,6 +145,7 @@ contains
             call solver%advance(model%stiff, model%load, model%contact, nstep)
             call system_clock(clock1)
             t_steps = t_steps + (clock1 - tick)
+            call tuner%update(real(clock1 - tick, wp)/rate, nstep)
             if (solver%growing) then
                ! a growing mode: back to the element bound from the next step on
                model%dt = deck%solver%dt_factor*model%dt_critical
@@ -203,6 +208,9 @@ contains
       call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
       call summary(model, deck, solver, cli%output, converged, status, residual, wall, timings, dt_initial, fallback_step)
+      if (tuner%active) write (output_unit, '(a)') ' threads             auto: '//str(tuner%nmax)//' on '// &
+         fixed(100*real(tuner%steps(2), wp)/max(1.0_wp, real(sum(tuner%steps), wp)), 1)//' % of the steps, 1 on the rest ('// &
+         str(tuner%switches)//' switches; set OMP_NUM_THREADS to fix the count)'
       if (solver%blown_up) then
          call fail(2, 'the run blew up at step '//str(solver%step)//' (t = '//str(solver%time)// &
                    ' s): kinetic energy '//str(solver%kinetic)//' mJ exceeds 1000 x the work put in ('// &

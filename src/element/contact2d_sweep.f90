@@ -93,7 +93,7 @@ contains
       integer :: j, rt
       real(wp) :: cv(0:7, -3:3, 3, 3)
       call flat_coefficients(s, cv)
-      !$omp parallel do schedule(runtime) if(par) private(rt)
+      !$omp parallel do schedule(dynamic) if(par) private(rt)
       do j = 0, ny
          rt = merge(1, merge(3, 2, j == ny), j == 0)
          call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), uold(1, 0, j), &
@@ -224,7 +224,7 @@ contains
       logical, intent(in) :: pending
       integer :: c, r, k, m, n
       real(wp) :: fx, fy, vx, vy, ek, ed, es, ea
-      !$omp parallel do schedule(runtime) if(stiff%nnode >= omp_min_nodes) &
+      !$omp parallel do schedule(dynamic) if(stiff%nnode >= omp_min_nodes) &
       !$omp private(r, k, m, n, fx, fy, vx, vy, ek, ed, es, ea)
       do c = 1, size(partial, 2)
          ek = 0
