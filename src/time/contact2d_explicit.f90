@@ -298,7 +298,12 @@ contains
          estrain = estrain + partial(3, b)
          ealt = ealt + partial(4, b)
       end do
-      this%alternating = merge(ealt/ekin, 0.0_wp, ekin > 0)
+      ! (not merge: both of its arguments are evaluated, and 0/0 traps in Debug builds)
+      if (ekin > 0) then
+         this%alternating = ealt/ekin
+      else
+         this%alternating = 0
+      end if
       this%alternating_energy = 0.5_wp*ealt
       this%kinetic = 0.5_wp*ekin
       this%strain = 0.5_wp*estrain
