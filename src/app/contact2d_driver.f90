@@ -11,6 +11,7 @@ module contact2d_driver
    use contact2d_explicit, only: explicit_t
    use contact2d_output, only: output_t
    use contact2d_threads, only: thread_tuner_t
+   use contact2d_omp_env, only: omp_env_passive
    use contact2d_stiffness, only: omp_min_nodes
    implicit none
    private
@@ -37,6 +38,7 @@ contains
       type(thread_tuner_t) :: tuner
       integer(i8) :: fallback_step
 
+      call omp_env_passive()   ! may re-execute the program with OMP_WAIT_POLICY=passive
       call system_clock(clock0, rate)
       call cli_parse(cli, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg//new_line('a')//usage)
