@@ -133,12 +133,28 @@ contains
          end do
       end if
       part = [ek, ed, es, ea]
-      c = cv   ! a local copy: no aliasing, the coefficients stay in registers
-      nb = (n - 4)/8
+      if (n < 6) return   ! one column of elements: no interior node (the end nodes follow)
+      ! blocks start at odd p (a y output): c(l) holds the coefficients of parity mod(l + 1, 2);
+      ! a local copy, so no aliasing and the coefficients stay in registers
+      do l = 0, 7
+         c(l, :, :) = cv(mod(l + 1, 2), :, :)
+      end do
+      ! outputs p = 2 .. n - 3 (the interior nodes); u_r(p + o) must stay within 0 .. n - 1, so
+      ! the first (x, offset -3) and the last (y, offset +3) output leave out the term whose
+      ! coefficient is zero; the others go by blocks of eight, then one by one
+      p = 2
+      f(p) = ((cv(0, -2, 1)*um(p - 2) + cv(0, -1, 1)*um(p - 1) + cv(0, 0, 1)*um(p) + cv(0, 1, 1)*um(p + 1) &
+               + cv(0, 2, 1)*um(p + 2) + cv(0, 3, 1)*um(p + 3)) &
+              + (cv(0, -2, 2)*u0(p - 2) + cv(0, -1, 2)*u0(p - 1) + cv(0, 0, 2)*u0(p) + cv(0, 1, 2)*u0(p + 1) &
+                 + cv(0, 2, 2)*u0(p + 2) + cv(0, 3, 2)*u0(p + 3))) &
+             + (cv(0, -2, 3)*up(p - 2) + cv(0, -1, 3)*up(p - 1) + cv(0, 0, 3)*up(p) + cv(0, 1, 3)*up(p + 1) &
+                + cv(0, 2, 3)*up(p + 2) + cv(0, 3, 3)*up(p + 3))
+      w(p) = u0(p) + c1*v(p) - c2*minv(p)*f(p)
+      nb = (n - 6)/8
       do b = 0, nb - 1
          !$omp simd private(p, sm, s0, sp)
          do l = 0, 7
-            p = 2 + 8*b + l
+            p = 3 + 8*b + l
             sm = c(l, -3, 1)*um(p - 3) + c(l, -2, 1)*um(p - 2) + c(l, -1, 1)*um(p - 1) + c(l, 0, 1)*um(p) &
                  + c(l, 1, 1)*um(p + 1) + c(l, 2, 1)*um(p + 2) + c(l, 3, 1)*um(p + 3)
             s0 = c(l, -3, 2)*u0(p - 3) + c(l, -2, 2)*u0(p - 2) + c(l, -1, 2)*u0(p - 1) + c(l, 0, 2)*u0(p) &
@@ -149,17 +165,25 @@ contains
             w(p) = u0(p) + c1*v(p) - c2*minv(p)*f(p)
          end do
       end do
-      do p = 2 + 8*nb, n - 3
+      do p = 3 + 8*nb, n - 4
          l = mod(p, 2)
-         sm = c(l, -3, 1)*um(p - 3) + c(l, -2, 1)*um(p - 2) + c(l, -1, 1)*um(p - 1) + c(l, 0, 1)*um(p) &
-              + c(l, 1, 1)*um(p + 1) + c(l, 2, 1)*um(p + 2) + c(l, 3, 1)*um(p + 3)
-         s0 = c(l, -3, 2)*u0(p - 3) + c(l, -2, 2)*u0(p - 2) + c(l, -1, 2)*u0(p - 1) + c(l, 0, 2)*u0(p) &
-              + c(l, 1, 2)*u0(p + 1) + c(l, 2, 2)*u0(p + 2) + c(l, 3, 2)*u0(p + 3)
-         sp = c(l, -3, 3)*up(p - 3) + c(l, -2, 3)*up(p - 2) + c(l, -1, 3)*up(p - 1) + c(l, 0, 3)*up(p) &
-              + c(l, 1, 3)*up(p + 1) + c(l, 2, 3)*up(p + 2) + c(l, 3, 3)*up(p + 3)
+         sm = cv(l, -3, 1)*um(p - 3) + cv(l, -2, 1)*um(p - 2) + cv(l, -1, 1)*um(p - 1) + cv(l, 0, 1)*um(p) &
+              + cv(l, 1, 1)*um(p + 1) + cv(l, 2, 1)*um(p + 2) + cv(l, 3, 1)*um(p + 3)
+         s0 = cv(l, -3, 2)*u0(p - 3) + cv(l, -2, 2)*u0(p - 2) + cv(l, -1, 2)*u0(p - 1) + cv(l, 0, 2)*u0(p) &
+              + cv(l, 1, 2)*u0(p + 1) + cv(l, 2, 2)*u0(p + 2) + cv(l, 3, 2)*u0(p + 3)
+         sp = cv(l, -3, 3)*up(p - 3) + cv(l, -2, 3)*up(p - 2) + cv(l, -1, 3)*up(p - 1) + cv(l, 0, 3)*up(p) &
+              + cv(l, 1, 3)*up(p + 1) + cv(l, 2, 3)*up(p + 2) + cv(l, 3, 3)*up(p + 3)
          f(p) = (sm + s0) + sp
          w(p) = u0(p) + c1*v(p) - c2*minv(p)*f(p)
       end do
+      p = n - 3
+      f(p) = ((cv(1, -3, 1)*um(p - 3) + cv(1, -2, 1)*um(p - 2) + cv(1, -1, 1)*um(p - 1) + cv(1, 0, 1)*um(p) &
+               + cv(1, 1, 1)*um(p + 1) + cv(1, 2, 1)*um(p + 2)) &
+              + (cv(1, -3, 2)*u0(p - 3) + cv(1, -2, 2)*u0(p - 2) + cv(1, -1, 2)*u0(p - 1) + cv(1, 0, 2)*u0(p) &
+                 + cv(1, 1, 2)*u0(p + 1) + cv(1, 2, 2)*u0(p + 2))) &
+             + (cv(1, -3, 3)*up(p - 3) + cv(1, -2, 3)*up(p - 2) + cv(1, -1, 3)*up(p - 1) + cv(1, 0, 3)*up(p) &
+                + cv(1, 1, 3)*up(p + 1) + cv(1, 2, 3)*up(p + 2))
+      w(p) = u0(p) + c1*v(p) - c2*minv(p)*f(p)
    end subroutine grid_row
 
    !> The interior stencils of the three row types on a grid row seen as one flat array of
