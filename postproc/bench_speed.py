@@ -193,7 +193,7 @@ def section_threads(exe, out, levels, repeats):
     print("\n== threads under load: a CPU-bound process occupies one core (started by this script)", flush=True)
     for k in levels:
         nel = 39 * 4**k
-        steps = max(400, int(1e8 / nel))
+        steps = max(400, int(2e7 / nel))
         sets = {"solver:max_steps": steps, "solver:t_end": 1.0, "solver:tol_residual": 1e-300,
                 "solver:power_iterations": 0, "output:history_interval": steps}
         # the program waits passively unless told otherwise: "2 active" is libgomp's own default
