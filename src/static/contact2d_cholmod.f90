@@ -33,10 +33,11 @@ module contact2d_cholmod
          type(c_ptr), intent(out) :: handle
          real(c_double), intent(out) :: pivot_ratio
       end function c2d_chol_factor
-      integer(c_int) function c2d_chol_trailing(handle, l22) bind(c, name='c2d_chol_trailing')
+      integer(c_int) function c2d_chol_trailing(handle, l22, order) bind(c, name='c2d_chol_trailing')
          import :: c_int, c_double, c_ptr
          type(c_ptr), value :: handle
          real(c_double), intent(out) :: l22(*)
+         integer(c_int), intent(out) :: order(*)
       end function c2d_chol_trailing
       integer(c_int) function c2d_chol_solve(handle, b, x) bind(c, name='c2d_chol_solve')
          import :: c_int, c_double, c_ptr
@@ -87,12 +88,15 @@ contains
    end subroutine cholmod_factor
 
    !> The dense lower-triangular factor L22 (nlast x nlast) of the Schur complement on the
-   !> trailing dofs: S = L22 L22^T.
-   subroutine cholmod_trailing(this, l22)
+   !> trailing dofs in their elimination order: S(order, order) = L22 L22^T, order(k) being the
+   !> trailing dof (1-based, within the trailing block) eliminated k-th among them.
+   subroutine cholmod_trailing(this, l22, order)
       class(cholmod_t), intent(in) :: this
       real(wp), intent(out) :: l22(:, :)
-      integer(c_int) :: info
-      info = c2d_chol_trailing(this%handle, l22)
+      integer, intent(out) :: order(:)
+      integer(c_int) :: info, ord(size(order))
+      info = c2d_chol_trailing(this%handle, l22, ord)
+      order = ord + 1
    end subroutine cholmod_trailing
 
    !> x = K^-1 b. stat /= 0 on failure.

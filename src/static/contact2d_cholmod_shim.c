@@ -12,6 +12,9 @@
 #include <string.h>
 #include <math.h>
 #include <suitesparse/cholmod.h>
+#include <stdio.h>
+#include <time.h>
+static double c2d_now(void) { struct timespec t; clock_gettime(CLOCK_MONOTONIC, &t); return t.tv_sec + 1e-9 * t.tv_nsec; }
 
 typedef struct {
     cholmod_common common;
@@ -58,6 +61,15 @@ int c2d_chol_factor(int n, long nnz, const int *ti, const int *tj, const double 
 
     perm = malloc(sizeof(int) * (n > 0 ? n : 1));
     if (!perm) goto done;
+    if (0) { /* CAMD with the trailing set constrained last: faster to order, more flops (measured) */
+        int *cmember = malloc(sizeof(int) * (n > 0 ? n : 1));
+        for (k = 0; k < n; k++) cmember[k] = k < nfirst ? 0 : 1;
+        double tm = c2d_now();
+        ok = cholmod_camd(A, NULL, 0, cmember, perm, &h->common);
+        if (getenv("C2D_TIMING")) fprintf(stderr, "camd %.3f ok %d\n", c2d_now() - tm, ok);
+        free(cmember);
+        if (!ok) goto done;
+    } else {
     if (nfirst > 0) {
         /* the leading block K11 alone, ordered by METIS (AMD as a fallback) */
         m = 0;
@@ -80,7 +92,9 @@ int c2d_chol_factor(int n, long nnz, const int *ti, const int *tj, const double 
         if (!A11) goto done;
         perm11 = malloc(sizeof(int) * nfirst);
         if (!perm11) goto done;
+        double tm = c2d_now();
         ok = cholmod_metis(A11, NULL, 0, 1, perm11, &h->common);
+        if (getenv("C2D_TIMING")) fprintf(stderr, "metis %.3f ok %d\n", c2d_now() - tm, ok);
         if (!ok) {
             h->common.status = CHOLMOD_OK;
             ok = cholmod_amd(A11, NULL, 0, perm11, &h->common);
@@ -89,23 +103,26 @@ int c2d_chol_factor(int n, long nnz, const int *ti, const int *tj, const double 
         memcpy(perm, perm11, sizeof(int) * nfirst);
     }
     for (k = 0; k < nlast; k++) perm[nfirst + k] = nfirst + (int)k;
-
+    }
     h->common.nmethods = 1;
     h->common.method[0].ordering = CHOLMOD_GIVEN;
     h->common.postorder = 0;
+    double t0 = c2d_now();
     h->L = cholmod_analyze_p(A, perm, NULL, 0, &h->common);
+    double t1 = c2d_now();
     if (!h->L) goto done;
     cholmod_factorize(A, h->L, &h->common);
+    if (getenv("C2D_TIMING")) fprintf(stderr, "analyze %.3f factorize %.3f lnz %.0f fl %.3g nsuper %d\n", t1 - t0, c2d_now() - t1, h->common.lnz, h->common.fl, (int)h->L->nsuper);
     if (h->common.status == CHOLMOD_NOT_POSDEF) {
         status = 2;
         goto done;
     }
     if (h->common.status != CHOLMOD_OK || !h->L->is_super) goto done;
-    /* the trailing dofs must have stayed last, in their order */
+    /* the trailing dofs must have stayed last (in any order) */
     {
         const int *Lperm = h->L->Perm;
         for (k = 0; k < nlast; k++)
-            if (Lperm[nfirst + k] != nfirst + k) goto done;
+            if (Lperm[nfirst + k] < nfirst) goto done;
     }
 
     /* smallest pivot relative to the matrix diagonal (both in the permuted order) */
@@ -155,17 +172,19 @@ done:
     return 0;
 }
 
-/* The trailing nlast x nlast block L22 of the factor, dense column-major (upper part zero). */
-int c2d_chol_trailing(void *handle, double *l22)
+/* The trailing nlast x nlast block L22 of the factor, dense column-major (upper part zero), in
+ * the elimination order; order[k] (0-based) is the trailing dof of its k-th row and column. */
+int c2d_chol_trailing(void *handle, double *l22, int *order)
 {
     c2d_chol_t *h = handle;
     const int *super = h->L->super, *pi = h->L->pi, *px = h->L->px, *Ls = h->L->s;
     const double *Lx = h->L->x;
-    int nfirst = h->n - h->nlast, nl = h->nlast;
+    int nfirst = h->n - h->nlast, nl = h->nlast, j;
     size_t s;
     memset(l22, 0, sizeof(double) * (size_t)nl * nl);
+    for (j = 0; j < nl; j++) order[j] = ((const int *)h->L->Perm)[nfirst + j] - nfirst;
     for (s = 0; s < h->L->nsuper; s++) {
-        int k1 = super[s], k2 = super[s + 1], nsrow = pi[s + 1] - pi[s], j, r;
+        int k1 = super[s], k2 = super[s + 1], nsrow = pi[s + 1] - pi[s], r;
         if (k2 <= nfirst) continue;
         for (j = k1 > nfirst ? k1 : nfirst; j < k2; j++) {
             for (r = j - k1; r < nsrow; r++) {

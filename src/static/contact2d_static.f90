@@ -32,6 +32,9 @@ module contact2d_static
    !> PDAS and fixed-point iteration limits.
    integer, parameter :: max_pdas = 200, max_outer = 50
    logical, parameter :: debug = .false.
+   !> Tangential complementarity constants tried in turn (fractions of A_rr): with 1, the slip
+   !> signs of the paper scene flip-flop from level 4 on; 0.1 settles in 9-14 iterations (levels 0-6).
+   real(wp), parameter :: ct_tries(3) = [0.1_wp, 0.01_wp, 1.0_wp]
 
    !> The factorised, condensed problem and the state of the last increment.
    type :: static_t
@@ -81,6 +84,7 @@ contains
       integer :: k, c, i, n, nint, nnz, e, a, b, ia, ib, ncd
       integer, allocatable :: ti(:), tj(:)
       real(wp), allocatable :: tx(:), l22(:, :)
+      integer, allocatable :: order(:)
       integer(i8) :: t0, t1, rate
       logical, allocatable :: is_contact(:)
 
@@ -202,8 +206,9 @@ contains
       ! A = P^T B S B^T P from S = L22 L22^T
       if (this%m > 0) then
          allocate (l22(this%ncdof, this%ncdof))
-         call this%chol%trailing(l22)
-         call condense(this, model, l22, stat, errmsg)
+         allocate (order(this%ncdof))
+         call this%chol%trailing(l22, order)
+         call condense(this, model, l22, order, stat, errmsg)
          if (stat /= 0) return
       end if
       allocate (this%u(2, this%nnode), this%fext(2, this%nnode), this%fint(2, this%nnode), &
@@ -225,10 +230,11 @@ contains
 
    !> S = L22 L22^T (LAPACK dlauum on the index-reversed factor), then A = P^T B S B^T P:
    !> B rotates each contact node's free dofs to (n, t), P = diag(D^-1, I) for P0 (I for P1).
-   subroutine condense(this, model, l22, stat, errmsg)
+   subroutine condense(this, model, l22, order, stat, errmsg)
       type(static_t), intent(inout) :: this
       type(model_t), intent(in) :: model
       real(wp), allocatable, intent(inout) :: l22(:, :)
+      integer, intent(in) :: order(:)
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       real(wp), allocatable :: s(:, :), w(:, :), dd(:), dl(:), tr(:, :)
@@ -244,11 +250,12 @@ contains
          errmsg = 'LAPACK dlauum failed (info = '//str(info)//')'
          return
       end if
+      ! back to the trailing dofs' own order: S(order(a), order(b)) = (L22 L22^T)(a, b)
       allocate (s(nl, nl))
       do j = 1, nl
          do i = 1, j
-            s(nl + 1 - i, nl + 1 - j) = l22(i, j)
-            s(nl + 1 - j, nl + 1 - i) = l22(i, j)
+            s(order(nl + 1 - i), order(nl + 1 - j)) = l22(i, j)
+            s(order(nl + 1 - j), order(nl + 1 - i)) = l22(i, j)
          end do
       end do
       deallocate (l22)
@@ -321,10 +328,10 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       real(wp), allocatable :: up(:, :), ku(:, :), f(:), x(:), y0(:), cvec(:), qn(:), psi_ref(:), lim(:), &
-                               uprev(:, :), tmp(:)
+                               uprev(:, :)
       real(wp) :: cv(model%load%ncurve)
       integer, allocatable :: mask(:, :)
-      integer :: p, n, c, i, r, iouter, nit, k
+      integer :: p, n, c, i, r, iouter, nit, k, itry
       integer(i8) :: t0, t1, rate
       logical :: done, pdas_ok
 
@@ -392,9 +399,15 @@ contains
          done = .false.
          do iouter = 1, max_outer
             this%outer_iterations = this%outer_iterations + 1
-            call pdas(this, cvec, y0, lim, nit, pdas_ok, stat, errmsg)
-            this%iterations = this%iterations + nit
-            if (stat /= 0) return
+            ! a cycle restarts the iteration from 'all in contact, all stuck' with a smaller
+            ! tangential constant (docs/static.md)
+            do itry = 1, size(ct_tries)
+               if (itry > 1) this%state = -99
+               call pdas(this, cvec, y0, lim, ct_tries(itry), nit, pdas_ok, stat, errmsg)
+               this%iterations = this%iterations + nit
+               if (stat /= 0) return
+               if (pdas_ok) exit
+            end do
             if (.not. pdas_ok) then
                converged = .false.
                message = 'the active-set iteration cycled or did not settle in '//str(max_pdas)//' iterations'
@@ -431,51 +444,123 @@ contains
             message = 'the fixed point on the friction thresholds did not settle in '//str(max_outer)//' iterations'
          end if
          if (.not. pdas_ok) call nodal_forces(this, model)
-         ! contact forces on the body -F_n n - F_t t at the free dofs
-         do i = 1, this%nc
-            n = model%contact%node(i)
-            do c = 1, 2
-               if (this%dof(c, n) > 0) then
-                  this%fc(c, n) = -this%fn(i)*model%contact%normal(c) - this%ft(i)*model%contact%tangent(c)
-                  f(this%dof(c, n)) = f(this%dof(c, n)) + this%fc(c, n)
-               end if
-            end do
-         end do
-         call this%chol%solve(f, x, stat)
-         if (stat /= 0) then
-            errmsg = 'CHOLMOD solve failed'
-            return
-         end if
       end if
-      ! u, then one step of iterative refinement against the element-by-element K u
-      this%u = up
-      do n = 1, this%nnode
-         do c = 1, 2
-            if (this%dof(c, n) > 0) this%u(c, n) = x(this%dof(c, n))
-         end do
-      end do
-      call model%stiff%apply(this%u, this%fint)
-      allocate (tmp(this%nfree))
-      do n = 1, this%nnode
-         do c = 1, 2
-            if (this%dof(c, n) > 0) tmp(this%dof(c, n)) = this%fext(c, n) + this%fc(c, n) - this%fint(c, n)
-         end do
-      end do
-      call this%chol%solve(tmp, x, stat)
+      call displacement(this, model, f, up, stat)
       if (stat /= 0) then
          errmsg = 'CHOLMOD solve failed'
          return
       end if
-      do n = 1, this%nnode
-         do c = 1, 2
-            if (this%dof(c, n) > 0) this%u(c, n) = this%u(c, n) + x(this%dof(c, n))
+      ! refine the multipliers of the fixed sets against the full solve (it removes the round-off
+      ! of the condensed operator): y_J(u) should vanish; d lambda_J = (A_JJ - A_JK A_KK^-1 A_KJ) y_J
+      if (this%m > 0 .and. converged) then
+         do k = 1, 2
+            call refine_multipliers(this, model, uprev, stat, errmsg)
+            if (stat /= 0) return
+            call nodal_forces(this, model)
+            call displacement(this, model, f, up, stat)
+            if (stat /= 0) then
+               errmsg = 'CHOLMOD solve failed'
+               return
+            end if
          end do
-      end do
-      call model%stiff%apply(this%u, this%fint)
+      end if
       call kkt_residuals(this, model, uprev)
       call system_clock(t1)
       this%time_pdas = this%time_pdas + real(t1 - t0, wp)/rate
    end subroutine static_increment
+
+   !> u = K^-1 (f0 + contact forces) on the free dofs, up on the prescribed ones, with one step
+   !> of iterative refinement against the element-by-element K u; fc and fint follow.
+   subroutine displacement(this, model, f0, up, stat)
+      type(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: f0(:), up(:, :)
+      integer, intent(out) :: stat
+      real(wp) :: f(this%nfree), x(this%nfree)
+      integer :: i, n, c, pass
+      this%fc = 0
+      do i = 1, this%nc
+         n = model%contact%node(i)
+         do c = 1, 2
+            if (this%dof(c, n) > 0) this%fc(c, n) = -this%fn(i)*model%contact%normal(c) - &
+                                                     this%ft(i)*model%contact%tangent(c)
+         end do
+      end do
+      this%u = up
+      f = f0
+      do pass = 1, 2
+         if (pass == 2) then
+            ! the residual of the first pass: f_ext + F_c - K u on the free dofs
+            do n = 1, this%nnode
+               do c = 1, 2
+                  if (this%dof(c, n) > 0) f(this%dof(c, n)) = this%fext(c, n) + this%fc(c, n) - this%fint(c, n)
+               end do
+            end do
+         else
+            do n = 1, this%nnode
+               do c = 1, 2
+                  if (this%dof(c, n) > 0) f(this%dof(c, n)) = f(this%dof(c, n)) + this%fc(c, n)
+               end do
+            end do
+         end if
+         call this%chol%solve(f, x, stat)
+         if (stat /= 0) return
+         do n = 1, this%nnode
+            do c = 1, 2
+               if (this%dof(c, n) > 0) this%u(c, n) = this%u(c, n) + x(this%dof(c, n))
+            end do
+         end do
+         call model%stiff%apply(this%u, this%fint)
+      end do
+   end subroutine displacement
+
+   !> lambda_J += (A_JJ - A_JK A_KK^-1 A_KJ) y_J(u) on the fixed-displacement set J (active
+   !> normal, stick), y measured on the full displacement u: one step of iterative refinement.
+   subroutine refine_multipliers(this, model, uprev, stat, errmsg)
+      type(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: uprev(:, :)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      real(wp) :: y(this%m), d(this%nc)
+      real(wp), allocatable :: akk(:, :), z(:), e(:), dl(:)
+      integer, allocatable :: jset(:), kset(:)
+      integer :: i, r, nk, info
+      external :: dpotrf, dpotrs
+      stat = 0
+      errmsg = ''
+      do i = 1, this%nc
+         d(i) = dot_product(this%u(:, model%contact%node(i)), model%contact%normal) - model%contact%gap(i)
+      end do
+      if (this%p0) then
+         call d_apply(model, d, y(1:this%nc))
+      else
+         y(1:this%nc) = d
+      end if
+      do r = this%nc + 1, this%m
+         i = model%contact%node(this%cnode(r))
+         y(r) = dot_product(this%u(:, i) - uprev(:, i), this%bdir(:, r))
+      end do
+      jset = pack([(r, r=1, this%m)], this%state == 1 .or. this%state == 3)
+      kset = pack([(r, r=1, this%m)], .not. (this%state == 1 .or. this%state == 3))
+      if (size(jset) == 0) return
+      e = y(jset)
+      dl = matmul(this%a(jset, jset), e)
+      nk = size(kset)
+      if (nk > 0) then
+         akk = this%a(kset, kset)
+         z = matmul(this%a(kset, jset), e)
+         call dpotrf('L', nk, akk, nk, info)
+         if (info /= 0) then
+            stat = 2
+            errmsg = 'LAPACK dpotrf failed on the condensed contact matrix (info = '//str(info)//')'
+            return
+         end if
+         call dpotrs('L', nk, 1, akk, nk, z, nk, info)
+         dl = dl - matmul(this%a(jset, kset), z)
+      end if
+      this%lambda(jset) = this%lambda(jset) + dl
+   end subroutine refine_multipliers
 
    !> Nodal forces from lambda: F_n = T lambda_n (mu for P0), F_t per node.
    subroutine nodal_forces(this, model)
@@ -500,9 +585,10 @@ contains
    !> +2 / -2 (slip: lambda = +-lim), 4 (no friction: lambda = 0). The sets follow
    !> lambda_n = max(0, lambda_n + k y_n), lambda_t = proj(lambda_t + k y_t) with k = A_rr.
    !> ok = .false. if a set repeats an earlier one (cycle) or max_pdas is reached.
-   subroutine pdas(this, cvec, y0, lim, nit, ok, stat, errmsg)
+   subroutine pdas(this, cvec, y0, lim, ct, nit, ok, stat, errmsg)
       type(static_t), intent(inout) :: this
       real(wp), intent(in) :: cvec(:), y0(:), lim(:)
+      real(wp), intent(in) :: ct   !< tangential complementarity constant, a fraction of A_rr
       integer, intent(out) :: nit
       logical, intent(out) :: ok
       integer, intent(out) :: stat
@@ -559,7 +645,7 @@ contains
                this%lambda(r) = cvec(r) - dot_product(this%a(r, free_set), y(free_set))
             end if
          end do
-         call classify(this, this%lambda, y, lim, new_state)
+         call classify(this, this%lambda, y, lim, ct, new_state)
          if (debug) print '(a,i4,a,6i6)', 'pdas', it, ' active/inactive/stick/slip+/slip-/free', &
             count(new_state == 1), count(new_state == 0), count(new_state == 3), count(new_state == 2), &
             count(new_state == -2), count(new_state == 4)
@@ -578,9 +664,9 @@ contains
    end subroutine pdas
 
    !> The sets from (lambda, y): see pdas.
-   subroutine classify(this, lambda, y, lim, state)
+   subroutine classify(this, lambda, y, lim, ct, state)
       type(static_t), intent(in) :: this
-      real(wp), intent(in) :: lambda(:), y(:), lim(:)
+      real(wp), intent(in) :: lambda(:), y(:), lim(:), ct
       integer, intent(out) :: state(:)
       integer :: r
       real(wp) :: v
@@ -591,7 +677,7 @@ contains
          if (lim(r - this%nc) <= 0) then
             state(r) = 4
          else
-            v = lambda(r) + this%a(r, r)*y(r)
+            v = lambda(r) + ct*this%a(r, r)*y(r)
             if (abs(v) <= lim(r - this%nc)) then
                state(r) = 3
             else
