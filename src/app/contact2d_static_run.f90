@@ -49,7 +49,8 @@ contains
       model%dt = 0
       write (output_unit, '(a)') 'static engine: '//str(st%nfree)//' free dofs, '//str(st%ncdof)// &
          ' condensed onto Gamma_c ('//str(st%nc)//' normal, '//str(st%nt)//' tangential unknowns); CHOLMOD factor '// &
-         str(nint(st%chol%lnz))//' nonzeros; '//str(nk)//' increment(s) to t = '//sci(t_end)//' s'
+         str(nint(st%chol%lnz))//' nonzeros, '//sci(st%chol%flops)//' flops, smallest pivot / diagonal '// &
+         sci(st%chol%pivot_ratio)//'; '//str(nk)//' increment(s) to t = '//sci(t_end)//' s'
 
       call state%init(model%stiff, model%load, 0.0_wp, damping_none, 0.0_wp, 1)
       call out%open(path, overwrite, deck, model, stat, errmsg)
@@ -142,6 +143,8 @@ contains
       call out%file%attr(out%file%id, 'static_increments', nk)
       call out%file%attr(out%file%id, 'static_iterations', st%iterations)
       call out%file%attr(out%file%id, 'static_outer_iterations', st%outer_iterations)
+      call out%file%attr(out%file%id, 'factor_nonzeros', st%chol%lnz)
+      call out%file%attr(out%file%id, 'factor_flops', st%chol%flops)
       call out%file%attr(out%file%id, 'time_factor_seconds', st%time_factor)
       call out%file%attr(out%file%id, 'time_condense_seconds', st%time_condense)
       call out%file%attr(out%file%id, 'time_solve_seconds', st%time_pdas)

@@ -15,6 +15,7 @@ module contact2d_cholmod
       integer :: nlast = 0             !< trailing dofs eliminated last
       real(wp) :: pivot_ratio = 0      !< min_j L_jj^2 / K_jj
       real(wp) :: lnz = 0              !< nonzeros of L
+      real(wp) :: flops = 0            !< floating-point operations of the factorisation
    contains
       procedure :: factor => cholmod_factor
       procedure :: trailing => cholmod_trailing
@@ -23,12 +24,12 @@ module contact2d_cholmod
    end type cholmod_t
 
    interface
-      integer(c_int) function c2d_chol_factor(n, nnz, ti, tj, tx, nlast, handle, pivot_ratio) &
+      integer(c_int) function c2d_chol_factor(n, nnz, ti, tj, tx, nlast, group, handle, pivot_ratio) &
          bind(c, name='c2d_chol_factor')
          import :: c_int, c_long, c_double, c_ptr
          integer(c_int), value :: n, nlast
          integer(c_long), value :: nnz
-         integer(c_int), intent(in) :: ti(*), tj(*)
+         integer(c_int), intent(in) :: ti(*), tj(*), group(*)
          real(c_double), intent(in) :: tx(*)
          type(c_ptr), intent(out) :: handle
          real(c_double), intent(out) :: pivot_ratio
@@ -49,6 +50,10 @@ module contact2d_cholmod
          import :: c_double, c_ptr
          type(c_ptr), value :: handle
       end function c2d_chol_lnz
+      real(c_double) function c2d_chol_flops(handle) bind(c, name='c2d_chol_flops')
+         import :: c_double, c_ptr
+         type(c_ptr), value :: handle
+      end function c2d_chol_flops
       subroutine c2d_chol_free(handle) bind(c, name='c2d_chol_free')
          import :: c_ptr
          type(c_ptr), intent(inout) :: handle
@@ -58,11 +63,12 @@ module contact2d_cholmod
 contains
 
    !> Factorise the n x n SPD matrix given by triplets (1-based, duplicates summed, either
-   !> triangle). stat: 0 ok; 1 CHOLMOD failure; 2 not positive definite.
-   subroutine cholmod_factor(this, n, ti, tj, tx, nlast, stat, errmsg)
+   !> triangle). group(n): the mesh node of each dof (a node's dofs consecutive), for the
+   !> ordering. stat: 0 ok; 1 CHOLMOD failure; 2 not positive definite.
+   subroutine cholmod_factor(this, n, ti, tj, tx, nlast, group, stat, errmsg)
       class(cholmod_t), intent(inout) :: this
       integer, intent(in) :: n, nlast
-      integer, intent(in) :: ti(:), tj(:)
+      integer, intent(in) :: ti(:), tj(:), group(:)
       real(wp), intent(in) :: tx(:)
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
@@ -72,7 +78,7 @@ contains
       i0 = int(ti - 1, c_int)
       j0 = int(tj - 1, c_int)
       stat = c2d_chol_factor(int(n, c_int), int(size(tx), c_long), i0, j0, tx, int(nlast, c_int), &
-                             this%handle, ratio)
+                             int(group, c_int), this%handle, ratio)
       errmsg = ''
       select case (stat)
       case (0)
@@ -80,6 +86,7 @@ contains
          this%nlast = nlast
          this%pivot_ratio = ratio
          this%lnz = c2d_chol_lnz(this%handle)
+         this%flops = c2d_chol_flops(this%handle)
       case (2)
          errmsg = 'CHOLMOD: the stiffness matrix is not positive definite'
       case default

@@ -4,17 +4,14 @@
  *
  * The matrix is symmetric positive definite, given as lower-triangle triplets (0-based, duplicates
  * summed). Its last `nlast` rows and columns (the contact dofs) are kept last in the elimination
- * order: the leading block is ordered by METIS (AMD if METIS fails), the trailing block follows in
- * its given order, no postordering. The supernodal factor L = [L11 0; L21 L22] then holds in L22
+ * order: the leading block is ordered by METIS on its node graph (AMD if METIS fails), the
+ * trailing block follows in its given order, no postordering. The supernodal factor L = [L11 0; L21 L22] then holds in L22
  * the Cholesky factor of the Schur complement S = K22 - K21 K11^-1 K12 (S = L22 L22^T).
  */
 #include <stdlib.h>
 #include <string.h>
 #include <math.h>
 #include <suitesparse/cholmod.h>
-#include <stdio.h>
-#include <time.h>
-static double c2d_now(void) { struct timespec t; clock_gettime(CLOCK_MONOTONIC, &t); return t.tv_sec + 1e-9 * t.tv_nsec; }
 
 typedef struct {
     cholmod_common common;
@@ -23,17 +20,71 @@ typedef struct {
     int nlast;
 } c2d_chol_t;
 
+/* Order the leading block on the graph of its groups (the mesh nodes: their dofs are consecutive
+ * and share one group id), which is 2x smaller with 4x fewer edges than the dof graph and keeps
+ * each node's dofs together. perm11 gets the dof permutation. Returns 1 on success. */
+static int order_groups(int nfirst, long nnz, const int *ti, const int *tj, const int *group,
+                        int *perm11, cholmod_common *c)
+{
+    int *gid = malloc(sizeof(int) * nfirst), *gstart = malloc(sizeof(int) * (nfirst + 1)), *gperm = NULL;
+    int ng = 0, k, ok = 0;
+    long m = 0, e;
+    cholmod_triplet *T = NULL;
+    cholmod_sparse *G = NULL;
+    if (!gid || !gstart) goto out;
+    for (k = 0; k < nfirst; k++) {
+        if (k == 0 || group[k] != group[k - 1]) gstart[ng++] = k;
+        gid[k] = ng - 1;
+    }
+    gstart[ng] = nfirst;
+    for (e = 0; e < nnz; e++)
+        if (ti[e] < nfirst && tj[e] < nfirst && gid[ti[e]] != gid[tj[e]]) m++;
+    T = cholmod_allocate_triplet(ng, ng, m > 0 ? m : 1, -1, CHOLMOD_PATTERN, c);
+    if (!T) goto out;
+    m = 0;
+    for (e = 0; e < nnz; e++) {
+        if (ti[e] < nfirst && tj[e] < nfirst) {
+            int a = gid[ti[e]], b = gid[tj[e]];
+            if (a == b) continue;
+            ((int *)T->i)[m] = a > b ? a : b;
+            ((int *)T->j)[m] = a > b ? b : a;
+            m++;
+        }
+    }
+    T->nnz = m;
+    G = cholmod_triplet_to_sparse(T, m, c);
+    gperm = malloc(sizeof(int) * (ng > 0 ? ng : 1));
+    if (!G || !gperm) goto out;
+    ok = cholmod_metis(G, NULL, 0, 1, gperm, c);
+    if (!ok) {
+        c->status = CHOLMOD_OK;
+        ok = cholmod_amd(G, NULL, 0, gperm, c);
+    }
+    if (ok) {
+        int p = 0, q;
+        for (k = 0; k < ng; k++)
+            for (q = gstart[gperm[k]]; q < gstart[gperm[k] + 1]; q++) perm11[p++] = q;
+    }
+out:
+    free(gid);
+    free(gstart);
+    free(gperm);
+    if (T) cholmod_free_triplet(&T, c);
+    if (G) cholmod_free_sparse(&G, c);
+    return ok;
+}
+
 /* Assemble, order and factorise. Returns 0 on success; 1 allocation/ordering failure, 2 not
  * positive definite (CHOLMOD found a non-positive pivot). pivot_ratio: min_j L_jj^2 / K_jj over
  * all columns (a rigid-body mode shows as a ratio near machine epsilon). */
 int c2d_chol_factor(int n, long nnz, const int *ti, const int *tj, const double *tx, int nlast,
-                    void **handle, double *pivot_ratio)
+                    const int *group, void **handle, double *pivot_ratio)
 {
     c2d_chol_t *h = calloc(1, sizeof(c2d_chol_t));
-    cholmod_triplet *T = NULL, *T11 = NULL;
-    cholmod_sparse *A = NULL, *A11 = NULL;
-    int *perm = NULL, *perm11 = NULL, nfirst = n - nlast, ok, status = 1;
-    long k, m;
+    cholmod_triplet *T = NULL;
+    cholmod_sparse *A = NULL;
+    int *perm = NULL, nfirst = n - nlast, status = 1;
+    long k;
     double *diag = NULL;
 
     *handle = NULL;
@@ -61,58 +112,16 @@ int c2d_chol_factor(int n, long nnz, const int *ti, const int *tj, const double 
 
     perm = malloc(sizeof(int) * (n > 0 ? n : 1));
     if (!perm) goto done;
-    if (0) { /* CAMD with the trailing set constrained last: faster to order, more flops (measured) */
-        int *cmember = malloc(sizeof(int) * (n > 0 ? n : 1));
-        for (k = 0; k < n; k++) cmember[k] = k < nfirst ? 0 : 1;
-        double tm = c2d_now();
-        ok = cholmod_camd(A, NULL, 0, cmember, perm, &h->common);
-        if (getenv("C2D_TIMING")) fprintf(stderr, "camd %.3f ok %d\n", c2d_now() - tm, ok);
-        free(cmember);
-        if (!ok) goto done;
-    } else {
     if (nfirst > 0) {
-        /* the leading block K11 alone, ordered by METIS (AMD as a fallback) */
-        m = 0;
-        for (k = 0; k < nnz; k++)
-            if (ti[k] < nfirst && tj[k] < nfirst) m++;
-        T11 = cholmod_allocate_triplet(nfirst, nfirst, m > 0 ? m : 1, -1, CHOLMOD_REAL, &h->common);
-        if (!T11) goto done;
-        m = 0;
-        for (k = 0; k < nnz; k++) {
-            int i = ti[k], j = tj[k];
-            if (i < nfirst && j < nfirst) {
-                ((int *)T11->i)[m] = i > j ? i : j;
-                ((int *)T11->j)[m] = i > j ? j : i;
-                ((double *)T11->x)[m] = tx[k];
-                m++;
-            }
-        }
-        T11->nnz = m;
-        A11 = cholmod_triplet_to_sparse(T11, m, &h->common);
-        if (!A11) goto done;
-        perm11 = malloc(sizeof(int) * nfirst);
-        if (!perm11) goto done;
-        double tm = c2d_now();
-        ok = cholmod_metis(A11, NULL, 0, 1, perm11, &h->common);
-        if (getenv("C2D_TIMING")) fprintf(stderr, "metis %.3f ok %d\n", c2d_now() - tm, ok);
-        if (!ok) {
-            h->common.status = CHOLMOD_OK;
-            ok = cholmod_amd(A11, NULL, 0, perm11, &h->common);
-        }
-        if (!ok) goto done;
-        memcpy(perm, perm11, sizeof(int) * nfirst);
+        if (!order_groups(nfirst, nnz, ti, tj, group, perm, &h->common)) goto done;
     }
     for (k = 0; k < nlast; k++) perm[nfirst + k] = nfirst + (int)k;
-    }
     h->common.nmethods = 1;
     h->common.method[0].ordering = CHOLMOD_GIVEN;
     h->common.postorder = 0;
-    double t0 = c2d_now();
     h->L = cholmod_analyze_p(A, perm, NULL, 0, &h->common);
-    double t1 = c2d_now();
     if (!h->L) goto done;
     cholmod_factorize(A, h->L, &h->common);
-    if (getenv("C2D_TIMING")) fprintf(stderr, "analyze %.3f factorize %.3f lnz %.0f fl %.3g nsuper %d\n", t1 - t0, c2d_now() - t1, h->common.lnz, h->common.fl, (int)h->L->nsuper);
     if (h->common.status == CHOLMOD_NOT_POSDEF) {
         status = 2;
         goto done;
@@ -157,11 +166,8 @@ int c2d_chol_factor(int n, long nnz, const int *ti, const int *tj, const double 
 done:
     free(diag);
     free(perm);
-    free(perm11);
     if (T) cholmod_free_triplet(&T, &h->common);
-    if (T11) cholmod_free_triplet(&T11, &h->common);
     if (A) cholmod_free_sparse(&A, &h->common);
-    if (A11) cholmod_free_sparse(&A11, &h->common);
     if (status != 0) {
         if (h->L) cholmod_free_factor(&h->L, &h->common);
         cholmod_finish(&h->common);
@@ -212,11 +218,17 @@ int c2d_chol_solve(void *handle, const double *b, double *x)
     return 0;
 }
 
-/* Number of nonzeros of L (for the summary). */
+/* Number of nonzeros of L and floating-point operations of the factorisation (CHOLMOD's counts). */
 double c2d_chol_lnz(void *handle)
 {
     c2d_chol_t *h = handle;
     return h->common.lnz;
+}
+
+double c2d_chol_flops(void *handle)
+{
+    c2d_chol_t *h = handle;
+    return h->common.fl;
 }
 
 void c2d_chol_free(void **handle)

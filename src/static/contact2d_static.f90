@@ -84,7 +84,7 @@ contains
       integer :: k, c, i, n, nint, nnz, e, a, b, ia, ib, ncd
       integer, allocatable :: ti(:), tj(:)
       real(wp), allocatable :: tx(:), l22(:, :)
-      integer, allocatable :: order(:)
+      integer, allocatable :: order(:), group(:)
       integer(i8) :: t0, t1, rate
       logical, allocatable :: is_contact(:)
 
@@ -189,7 +189,13 @@ contains
          errmsg = 'static engine: every dof is prescribed; nothing to solve'
          return
       end if
-      call this%chol%factor(this%nfree, ti, tj, tx, this%ncdof, stat, errmsg)
+      allocate (group(this%nfree))
+      do n = 1, this%nnode
+         do c = 1, 2
+            if (this%dof(c, n) > 0) group(this%dof(c, n)) = n
+         end do
+      end do
+      call this%chol%factor(this%nfree, ti, tj, tx, this%ncdof, group, stat, errmsg)
       deallocate (ti, tj, tx)
       if (stat == 2 .or. (stat == 0 .and. this%chol%pivot_ratio < singular_pivot_ratio)) then
          stat = 1
