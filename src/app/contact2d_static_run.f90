@@ -68,7 +68,8 @@ contains
       fext_prev = 0
       allocate (fn_prev(st%nc), d(st%nc), dprev(st%nc))
       fn_prev = 0
-      dprev = -model%contact%gap
+      dprev = 0
+      if (model%contact%active) dprev = -model%contact%gap
       converged = .true.
       status = 'converged'
       kkt_max = 0
