@@ -17,7 +17,7 @@ Facts checked, each recomputed here from the HDF5 file (numpy only) rather than 
    N = 1 and 10 (SPEC section 1); tresca_sliding with 20 increments slides with F_t = s L = 100 N.
 6. Output contract: method = 'static', dt = 0, steps = increments, converged = 1.
 7. Refusals: penalty contact, compare_static with penalty, a singular stiffness (a free rigid
-   mode): one line on stderr, exit 1, no file.
+   mode), an unknown method, static_increments = 0: one line on stderr, exit 1, no file.
 8. Agreement with the GetFEM reference (postproc/getfem_reference.py, level 2, Tresca P1/P0) to
    that test's tolerance 1e-6 (tests/regression/test_getfem.py), where python3-getfem is present.
 """
@@ -193,7 +193,14 @@ def body(t):
     sing = t.run(path, "--static", cwd=d)
     t.expect_exit(sing, 1)
     t.check(sing, "message names the singular stiffness", "singular" in sing.stderr, "singular", sing.stderr.strip())
-    for r in (pen, pen2, sing):
+    bad_method = t.run(t.deck("patch_compression_p1.nml"), "--set", "solver:method='implicit'", name="refuse_method")
+    t.expect_exit(bad_method, 1)
+    t.check(bad_method, "message names the bad value", "'implicit'" in bad_method.stderr, "'implicit'",
+            bad_method.stderr.strip())
+    bad_inc = t.run(t.deck("patch_compression_p1.nml"), "--static", "--set", "solver:static_increments=0",
+                    name="refuse_increments")
+    t.expect_exit(bad_inc, 1)
+    for r in (pen, pen2, sing, bad_method, bad_inc):
         t.check_equal(r, "error lines on stderr", 1, len(r.error_lines()))
         t.check_equal(r, "output file written", False, os.path.exists(r.h5))
 
