@@ -75,8 +75,9 @@ contains
       integer(c_int), allocatable :: i0(:), j0(:)
       real(c_double) :: ratio
       call this%free()
-      i0 = int(ti - 1, c_int)
-      j0 = int(tj - 1, c_int)
+      allocate (i0(size(ti)), j0(size(tj)))
+      i0(:) = int(ti - 1, c_int)
+      j0(:) = int(tj - 1, c_int)
       stat = c2d_chol_factor(int(n, c_int), int(size(tx), c_long), i0, j0, tx, int(nlast, c_int), &
                              int(group, c_int), this%handle, ratio)
       errmsg = ''

@@ -29,6 +29,8 @@ module contact2d_static
       'normal_feasibility', 'complementarity', 'friction_feasibility', 'equilibrium']
    !> A pivot L_jj^2 / K_jj below this marks a singular stiffness (a free rigid-body mode).
    real(wp), parameter :: singular_pivot_ratio = 1.0e-11_wp
+   !> Local node and component of each of the 8 element dofs (u1x, u1y, u2x, ...).
+   integer, parameter :: node_of(8) = [1, 1, 2, 2, 3, 3, 4, 4], comp_of(8) = [1, 2, 1, 2, 1, 2, 1, 2]
    !> PDAS and fixed-point iteration limits.
    integer, parameter :: max_pdas = 200, max_outer = 50
    logical, parameter :: debug = .false.
@@ -158,10 +160,10 @@ contains
       nnz = 0
       do e = 1, model%mesh%nel
          do a = 1, 8
-            ia = this%dof(2 - mod(a, 2), model%mesh%conn((a + 1)/2, e))
+            ia = this%dof(comp_of(a), model%mesh%conn(node_of(a), e))
             if (ia == 0) cycle
             do b = 1, 8
-               ib = this%dof(2 - mod(b, 2), model%mesh%conn((b + 1)/2, e))
+               ib = this%dof(comp_of(b), model%mesh%conn(node_of(b), e))
                if (ib > 0 .and. ib <= ia) nnz = nnz + 1
             end do
          end do
@@ -171,10 +173,10 @@ contains
       do e = 1, model%mesh%nel
          associate (ke => model%stiff%ke(:, :, model%stiff%shape_of(e)))
             do a = 1, 8
-               ia = this%dof(2 - mod(a, 2), model%mesh%conn((a + 1)/2, e))
+               ia = this%dof(comp_of(a), model%mesh%conn(node_of(a), e))
                if (ia == 0) cycle
                do b = 1, 8
-                  ib = this%dof(2 - mod(b, 2), model%mesh%conn((b + 1)/2, e))
+                  ib = this%dof(comp_of(b), model%mesh%conn(node_of(b), e))
                   if (ib > 0 .and. ib <= ia) then
                      k = k + 1
                      ti(k) = ia
@@ -409,7 +411,7 @@ contains
             ! tangential constant (docs/static.md)
             do itry = 1, size(ct_tries)
                if (itry > 1) this%state = -99
-               call pdas(this, cvec, y0, lim, ct_tries(itry), nit, pdas_ok, stat, errmsg)
+               call pdas(this, cvec, lim, ct_tries(itry), nit, pdas_ok, stat, errmsg)
                this%iterations = this%iterations + nit
                if (stat /= 0) return
                if (pdas_ok) exit
@@ -591,9 +593,9 @@ contains
    !> +2 / -2 (slip: lambda = +-lim), 4 (no friction: lambda = 0). The sets follow
    !> lambda_n = max(0, lambda_n + k y_n), lambda_t = proj(lambda_t + k y_t) with k = A_rr.
    !> ok = .false. if a set repeats an earlier one (cycle) or max_pdas is reached.
-   subroutine pdas(this, cvec, y0, lim, ct, nit, ok, stat, errmsg)
+   subroutine pdas(this, cvec, lim, ct, nit, ok, stat, errmsg)
       type(static_t), intent(inout) :: this
-      real(wp), intent(in) :: cvec(:), y0(:), lim(:)
+      real(wp), intent(in) :: cvec(:), lim(:)
       real(wp), intent(in) :: ct   !< tangential complementarity constant, a fraction of A_rr
       integer, intent(out) :: nit
       logical, intent(out) :: ok
