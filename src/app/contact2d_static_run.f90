@@ -39,6 +39,8 @@ contains
       character(len=:), allocatable :: message, status
 
       code = 1
+      call supported(deck, stat, errmsg)
+      if (stat /= 0) return
       call st%setup(model, stat, errmsg)
       if (stat /= 0) then
          call st%free()
@@ -220,6 +222,8 @@ contains
 
       dist = huge(1.0_wp)
       converged = .false.
+      call supported(deck, stat, errmsg)
+      if (stat /= 0) return
       call st%setup(model, stat, errmsg)
       if (stat /= 0) return
       nk = deck%solver%static_increments
@@ -236,6 +240,23 @@ contains
       dist = sqrt(max(sum(du*kdu), 0.0_wp))/sqrt(max(sum(st%u*st%fint), tiny(1.0_wp)))
       call st%free()
    end subroutine static_distance
+
+   !> The friction laws the static engine solves: frictionless and Tresca (docs/static.md).
+   !> Another law (Coulomb, when it lands) is refused rather than solved as something else;
+   !> decks with an initial velocity (dynamic by nature) are to be refused here too.
+   subroutine supported(deck, stat, errmsg)
+      type(deck_t), intent(in) :: deck
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      stat = 0
+      errmsg = ''
+      if (.not. deck%contact%present) return
+      if (.not. any(trim(deck%contact%friction) == [character(len=12) :: 'frictionless', 'tresca'])) then
+         stat = 1
+         errmsg = "the static engine solves frictionless and Tresca contact only; contact:friction = '"// &
+                  trim(deck%contact%friction)//"' is not supported with solver:method = 'static' or compare_static"
+      end if
+   end subroutine supported
 
    function fixed(x, decimals) result(s)
       real(wp), intent(in) :: x
