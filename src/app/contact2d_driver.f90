@@ -13,6 +13,7 @@ module contact2d_driver
    use contact2d_threads, only: thread_tuner_t
    use contact2d_omp_env, only: omp_env_passive
    use contact2d_stiffness, only: omp_min_nodes
+   use contact2d_static_run, only: static_run, static_distance
    implicit none
    private
    public :: driver_main
@@ -37,9 +38,12 @@ contains
       real(wp) :: dt_initial
       type(thread_tuner_t) :: tuner
       integer(i8) :: fallback_step
+      real(wp) :: static_dist
+      logical :: static_converged
 
       call omp_env_passive()   ! may re-execute the program with OMP_WAIT_POLICY=passive
       call system_clock(clock0, rate)
+      static_dist = huge(1.0_wp)
       call cli_parse(cli, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg//new_line('a')//usage)
       if (cli%help) then
@@ -79,6 +83,13 @@ contains
       write (output_unit, '(a)') 'mesh '//str(model%mesh%nx)//' x '//str(model%mesh%ny)//' = '// &
          str(model%mesh%nel)//' Q1 elements, '//str(model%mesh%nnode)//' nodes, '// &
          str(model%stiff%nshape)//' distinct element matrix(es)'
+      if (deck%solver%method == 'static') then
+         ! the static engine (docs/static.md); a deck with an initial velocity is dynamic and
+         ! must be refused here once &initial exists
+         call static_run(deck, model, cli%output, cli%force, clock0, stat, errmsg)
+         if (stat /= 0) call fail(stat, errmsg)
+         return
+      end if
       omega2_power = 0
       if (deck%solver%power_iterations > 0) then
          if (model%contact%penalty) then
@@ -116,6 +127,7 @@ contains
       solver%guard_after = model%load%end_time()
       call out%open(cli%output, cli%force, deck, model, stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
+      call out%file%attr(out%file%id, 'method', 'explicit')
       call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
       call out%file%attr(out%file%id, 'dt_limit', trim(deck%solver%dt_limit))
       call out%file%attr(out%file%id, 'added_mass', model%added_mass)
@@ -205,6 +217,16 @@ contains
       timings(2) = real(t_steps, wp)/rate
       timings(3) = real(model%contact%clock_ticks, wp)/rate
       timings(4) = real(t_output, wp)/rate
+      ! solver:compare_static: energy distance of the end state to the static solution (issue 14)
+      if (deck%solver%compare_static) then
+         call static_distance(deck, model, solver%u, static_dist, static_converged, stat, errmsg)
+         if (stat /= 0) then
+            write (error_unit, '(a)') program_name//': warning: compare_static: '//errmsg
+         else
+            call out%file%attr(out%file%id, 'static_distance_energy', static_dist)
+            call out%file%attr(out%file%id, 'static_converged', merge(1, 0, static_converged))
+         end if
+      end if
       call system_clock(clock1)
       wall = real(clock1 - clock0, wp)/rate
       call out%file%attr(out%file%id, 'dt_initial', dt_initial)
@@ -215,6 +237,10 @@ contains
       if (tuner%active) write (output_unit, '(a)') ' threads             auto: '//str(tuner%nmax)//' on '// &
          fixed(100*real(tuner%steps(2), wp)/max(1.0_wp, real(sum(tuner%steps), wp)), 1)//' % of the steps, 1 on the rest ('// &
          str(tuner%switches)//' switches; set OMP_NUM_THREADS to fix the count)'
+      if (deck%solver%compare_static .and. static_dist < huge(1.0_wp)) then
+         write (output_unit, '(a)') ' static distance     '//sci(static_dist)//' (energy norm ||u - u_static||_K / '// &
+            '||u_static||_K'//trim(merge('); static NOT converged', ')                      ', .not. static_converged))
+      end if
       if (solver%blown_up) then
          call fail(2, 'the run blew up at step '//str(solver%step)//' (t = '//str(solver%time)// &
                    ' s): kinetic energy '//str(solver%kinetic)//' mJ exceeds 1000 x the work put in ('// &

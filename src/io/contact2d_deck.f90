@@ -97,6 +97,9 @@ module contact2d_deck
       !> true limit, with a growing-mode guard falling back to the element bound (issue 13)
       character(len=8) :: dt_limit = 'element'
       real(wp) :: mass_scaling = 0        !< target stable step [s] of mass scaling; 0: off (issue 13)
+      character(len=8) :: method = 'explicit'  !< 'explicit' | 'static' (docs/static.md, issue 14)
+      integer :: static_increments = 1    !< static load increments along the load curves, >= 1
+      logical :: compare_static = .false. !< explicit run: report the energy distance to the static solution
    end type solver_cfg_t
 
    !> &output: what is written and how often.
@@ -649,12 +652,15 @@ contains
       real(wp) :: dt, dt_factor, t_ramp, t_end, alpha, tol_residual, tol_kinetic, mass_scaling
       logical :: allow_unstable
       integer :: max_steps, damping_interval, check_interval, power_iterations, ios, i
-      character(len=8) :: damping, dt_limit
+      character(len=8) :: damping, dt_limit, method
+      integer :: static_increments
+      logical :: compare_static
       character(len=256) :: msg
       namelist /solver/ dt, dt_factor, allow_unstable, t_ramp, t_end, max_steps, damping, &
          alpha, damping_interval, tol_residual, tol_kinetic, check_interval, power_iterations, &
-         dt_limit, mass_scaling
+         dt_limit, mass_scaling, method, static_increments, compare_static
       dt_limit = cfg%dt_limit; mass_scaling = cfg%mass_scaling
+      method = cfg%method; static_increments = cfg%static_increments; compare_static = cfg%compare_static
       dt = cfg%dt; dt_factor = cfg%dt_factor; allow_unstable = cfg%allow_unstable
       t_ramp = cfg%t_ramp; t_end = cfg%t_end; max_steps = cfg%max_steps
       damping = cfg%damping; alpha = cfg%alpha; damping_interval = cfg%damping_interval
@@ -674,6 +680,7 @@ contains
       cfg%tol_residual = tol_residual; cfg%tol_kinetic = tol_kinetic
       cfg%check_interval = check_interval; cfg%power_iterations = power_iterations
       cfg%dt_limit = dt_limit; cfg%mass_scaling = mass_scaling
+      cfg%method = method; cfg%static_increments = static_increments; cfg%compare_static = compare_static
    end subroutine read_solver
 
    subroutine read_output(blk, ovr, where, cfg, stat, errmsg)
@@ -809,6 +816,21 @@ contains
                      trim(s%damping)//"'); it needs damping = 'auto' (quasi-static relaxation)"
             return
          end if
+         ! the static engine (docs/static.md)
+         s%method = lower(s%method)
+         if (.not. any(s%method == [character(len=8) :: 'explicit', 'static'])) then
+            errmsg = "solver:method = '"//trim(s%method)//"' is not one of 'explicit', 'static'"
+            return
+         end if
+         if (s%static_increments < 1) then
+            errmsg = 'solver:static_increments = '//str(s%static_increments)//' must be >= 1'
+            return
+         end if
+         if (s%method == 'static' .and. s%compare_static) then
+            errmsg = "solver:compare_static = .true. compares an explicit run with the static solution; "// &
+                     "it has no meaning with method = 'static'"
+            return
+         end if
       end associate
 
       associate (o => deck%output)
@@ -938,6 +960,13 @@ contains
                errmsg = "contact:penalty_stiffness is set but method = 'lagrange' ignores it"
                return
             end if
+            ! the static engine solves the multiplier problem (13) only (docs/static.md)
+            if (c%method == 'penalty' .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
+               errmsg = 'solver:'//trim(merge("method = 'static'", 'compare_static   ', deck%solver%method == 'static'))// &
+                        " needs contact:method = 'lagrange': the static engine solves the multiplier problem (13), "// &
+                        'not the penalty one'
+               return
+            end if
          end associate
       end if
       stat = 0
@@ -1065,7 +1094,8 @@ contains
                 kv('tol_residual', str(s%tol_residual))//kv('tol_kinetic', str(s%tol_kinetic))// &
                 kv('check_interval', str(s%check_interval))// &
                 kv('power_iterations', str(s%power_iterations))//kv('dt_limit', q(s%dt_limit))// &
-                kv('mass_scaling', str(s%mass_scaling))//'/'//nl
+                kv('mass_scaling', str(s%mass_scaling))//kv('method', q(s%method))// &
+                kv('static_increments', str(s%static_increments))//kv('compare_static', str(s%compare_static))//'/'//nl
       end associate
       text = text//'&output'//nl//kv('history_interval', str(deck%output%history_interval))// &
              kv('xdmf', str(deck%output%xdmf))//kv('progress', str(deck%output%progress))
