@@ -7,7 +7,7 @@
 !> many times as needed. Each group is read from its own block with iostat/iomsg; a failure
 !> names the deck line of the group and the runtime's message.
 module contact2d_deck
-   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str, lower, join
    use contact2d_material, only: material_t, material_init
@@ -837,7 +837,13 @@ contains
       ! run dynamic (no convergence test unless solver:convergence_test = 'on'; t_end bounds it)
       do i = 1, 2
          if (.not. ieee_is_finite(deck%initial%velocity(i))) then
-            errmsg = 'initial:velocity('//str(i)//') = '//str(deck%initial%velocity(i))//' must be finite (mm/s)'
+            ! named without arithmetic on the value (Debug builds trap invalid operations)
+            if (ieee_is_nan(deck%initial%velocity(i))) then
+               errmsg = 'NaN'
+            else
+               errmsg = trim(merge('+Infinity', '-Infinity', sign(1.0_wp, deck%initial%velocity(i)) > 0))
+            end if
+            errmsg = 'initial:velocity('//str(i)//') = '//errmsg//' must be finite (mm/s)'
             return
          end if
       end do
