@@ -312,7 +312,8 @@ contains
          write (output_unit, '(a)') ' steps               '//str(solver%step)//'   (t = '//sci(solver%time)//' s)'
          write (output_unit, '(a)') ' dt / dt_critical    '//fixed(model%dt/model%dt_critical, 4)
          if (deck%dynamic) write (output_unit, '(a)') ' run                 dynamic: initial velocity ('// &
-            sci(deck%initial%velocity(1))//', '//sci(deck%initial%velocity(2))//') mm/s, no damping, ends at t_end = '// &
+            sci(deck%initial%velocity(1))//', '//sci(deck%initial%velocity(2))//') mm/s, no damping, '// &
+            trim(merge('stops when converged or at t_end =', 'ends at t_end =                   ', deck%convergence_test))//' '// &
             sci(deck%solver%t_end)//' s; initial kinetic energy '//sci(solver%initial_kinetic)//' mJ'
          write (output_unit, '(a)') ' converged           '//conv
          write (output_unit, '(a)') ' energy balance      '//sci(solver%balance_error(c%friction_dissipation, c%normal_work))// &
