@@ -111,25 +111,28 @@ def slope(x, y):
 
 def figures(rows, args):
     plt = plt_module()
-    # force histories at one level, every method and step ratio
-    lvl = 3 if 3 in args.levels else args.levels[0]
-    fig, axes = plt.subplots(1, len(METHODS), figsize=(4.2 * len(METHODS), 3.6), sharey=True)
-    for ax, (label, _, _) in zip(axes, METHODS):
-        for ratio, style in zip(DT_RATIOS, ("-", "--", ":")):
-            r = next((r for r in rows if r["method"] == label and r["level"] == lvl and r["dt_ratio"] == ratio), None)
-            if r is None:
-                continue
-            ax.plot(r["_t"], r["_p"], style, lw=1.2, label="dt = %.1f dt_crit" % ratio)
-        ax.plot([-0.2, 0, 0, 1, 1, 1.5], [0, 0, 1, 1, 0, 0], "k-", lw=0.8, alpha=0.6, label="exact")
-        ax.set_xlim(-0.1, 1.4)
-        ax.set_title("%s, level %d" % (label, lvl))
-        ax.set_xlabel("(t - t0) / (2L/c)")
-        ax.grid(alpha=0.3)
-    axes[0].set_ylabel("contact force / (rho c v0 lx)")
-    axes[0].legend(fontsize=8, loc="lower center")
+    # force histories at the coarsest and finest level, every method and step ratio
+    shown = sorted({args.levels[0], args.levels[-1]})
+    fig, axes = plt.subplots(len(shown), len(METHODS), figsize=(4.2 * len(METHODS), 3.4 * len(shown)),
+                             sharey=True, squeeze=False)
+    for row_axes, lvl in zip(axes, shown):
+        for ax, (label, _, _) in zip(row_axes, METHODS):
+            for ratio, style in zip(DT_RATIOS, ("-", "--", ":")):
+                r = next((r for r in rows if r["method"] == label and r["level"] == lvl and r["dt_ratio"] == ratio),
+                         None)
+                if r is None:
+                    continue
+                ax.plot(r["_t"], r["_p"], style, lw=1.2, label="dt = %.1f dt_crit" % ratio)
+            ax.plot([-0.2, 0, 0, 1, 1, 1.5], [0, 0, 1, 1, 0, 0], "k-", lw=0.8, alpha=0.6, label="exact")
+            ax.set_xlim(-0.1, 1.4)
+            ax.set_title("%s, level %d" % (label, lvl))
+            ax.set_xlabel("(t - t0) / (2L/c)")
+            ax.grid(alpha=0.3)
+        row_axes[0].set_ylabel("contact force / (rho c v0 lx)")
+    axes[0][0].legend(fontsize=8, loc="lower center")
     fig.tight_layout()
     path = args.figures / "impact_force.png"
-    fig.savefig(path, dpi=110)
+    fig.savefig(path, dpi=100)
     print("wrote %s" % path)
 
     fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(14, 4))
