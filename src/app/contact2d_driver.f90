@@ -11,6 +11,7 @@ module contact2d_driver
    use contact2d_explicit, only: explicit_t
    use contact2d_output, only: output_t
    use contact2d_static_run, only: static_run, static_distance
+   use contact2d_initial, only: initial_velocity_apply, initial_velocity_warning
    implicit none
    private
    public :: driver_main
@@ -63,6 +64,8 @@ contains
       end if
       call model_build(deck, model, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
+      errmsg = initial_velocity_warning(model%load%free, deck%initial%velocity)
+      if (len(errmsg) > 0) call model%warnings%add(errmsg)
 
       write (output_unit, '(a)') program_name//' '//program_version//': '//cli%deck//' -> '//cli%output
       if (.not. cli%quiet) then
@@ -77,8 +80,7 @@ contains
          str(model%mesh%nel)//' Q1 elements, '//str(model%mesh%nnode)//' nodes, '// &
          str(model%stiff%nshape)//' distinct element matrix(es)'
       if (deck%solver%method == 'static') then
-         ! the static engine (docs/static.md); a deck with an initial velocity is dynamic and
-         ! must be refused here once &initial exists
+         ! the static engine (docs/static.md); decks it cannot honour were refused by the deck reader
          call static_run(deck, model, cli%output, cli%force, clock0, stat, errmsg)
          if (stat /= 0) call fail(stat, errmsg)
          return
@@ -102,6 +104,7 @@ contains
 
       call solver%init(model%stiff, model%load, model%dt, model%damping, deck%solver%alpha, &
                        deck%solver%damping_interval)
+      if (any(deck%initial%velocity /= 0)) call initial_velocity_apply(solver, model%load%free, deck%initial%velocity)
       call out%open(cli%output, cli%force, deck, model, stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
       call out%file%attr(out%file%id, 'method', 'explicit')
@@ -110,6 +113,10 @@ contains
          call out%file%attr(out%file%id, 'omega_max_power', sqrt(omega2_power))
          call out%file%attr(out%file%id, 'dt_stable_estimate', 2/sqrt(omega2_power))
       end if
+      ! issue 12: the kind of run and the energy put in at t = 0 (docs/output.md)
+      call out%file%attr(out%file%id, 'dynamic', merge(1, 0, deck%dynamic))
+      call out%file%attr(out%file%id, 'convergence_test', merge(1, 0, deck%convergence_test))
+      call out%file%attr(out%file%id, 'initial_kinetic_energy', solver%initial_kinetic)
       call out%sample(solver, model, 0.0_wp)
 
       call system_clock(clock1)
@@ -123,6 +130,7 @@ contains
       converged = .false.
       done = .false.
       status = 'not converged'
+      if (.not. deck%convergence_test) status = trim(merge('dynamic            ', 'no convergence test', deck%dynamic))
       residual = huge(1.0_wp)
       isnap = 1
       snap_step = next_snapshot(deck, model%dt, isnap)
@@ -147,7 +155,7 @@ contains
                status = 'contact solver failure'
                done = .true.
             else
-               if (mod(solver%step, check) == 0 .and. solver%time >= t_load_end) then
+               if (deck%convergence_test .and. mod(solver%step, check) == 0 .and. solver%time >= t_load_end) then
                   residual = solver%residual(model%load)
                   kin_ratio = merge(solver%kinetic/solver%strain, solver%kinetic, solver%strain > 0)
                   if (residual < deck%solver%tol_residual .and. kin_ratio < deck%solver%tol_kinetic) then
@@ -317,6 +325,9 @@ contains
       associate (c => model%contact)
          if (converged) then
             conv = 'yes (relative residual '//sci(residual)//' < '//sci(deck%solver%tol_residual)//')'
+         else if (.not. deck%convergence_test) then
+            conv = 'not tested (solver:convergence_test = '''//trim(deck%solver%convergence_test)// &
+                   '''); status: '//status
          else
             conv = 'NO: '//status//' (relative residual '//sci(residual)//', tolerance '// &
                    sci(deck%solver%tol_residual)//')'
@@ -325,6 +336,10 @@ contains
          write (output_unit, '(a)') repeat('-', 72)
          write (output_unit, '(a)') ' steps               '//str(solver%step)//'   (t = '//sci(solver%time)//' s)'
          write (output_unit, '(a)') ' dt / dt_critical    '//fixed(model%dt/model%dt_critical, 4)
+         if (deck%dynamic) write (output_unit, '(a)') ' run                 dynamic: initial velocity ('// &
+            sci(deck%initial%velocity(1))//', '//sci(deck%initial%velocity(2))//') mm/s, no damping, '// &
+            trim(merge('stops when converged or at t_end =', 'ends at t_end =                   ', deck%convergence_test))//' '// &
+            sci(deck%solver%t_end)//' s; initial kinetic energy '//sci(solver%initial_kinetic)//' mJ'
          write (output_unit, '(a)') ' converged           '//conv
          write (output_unit, '(a)') ' energy balance      '//sci(solver%balance_error(c%friction_dissipation, c%normal_work))// &
             ' (relative error; W_ext = '//sci(solver%external_work)//' mJ)'
