@@ -14,6 +14,7 @@ module contact2d_driver
    use contact2d_omp_env, only: omp_env_passive
    use contact2d_stiffness, only: omp_min_nodes
    use contact2d_static_run, only: static_run, static_distance
+   use contact2d_initial, only: initial_velocity_apply, initial_velocity_warning
    implicit none
    private
    public :: driver_main
@@ -70,6 +71,8 @@ contains
       end if
       call model_build(deck, model, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
+      errmsg = initial_velocity_warning(model%load%free, deck%initial%velocity)
+      if (len(errmsg) > 0) call model%warnings%add(errmsg)
 
       write (output_unit, '(a)') program_name//' '//program_version//': '//cli%deck//' -> '//cli%output
       if (.not. cli%quiet) then
@@ -84,8 +87,7 @@ contains
          str(model%mesh%nel)//' Q1 elements, '//str(model%mesh%nnode)//' nodes, '// &
          str(model%stiff%nshape)//' distinct element matrix(es)'
       if (deck%solver%method == 'static') then
-         ! the static engine (docs/static.md); a deck with an initial velocity is dynamic and
-         ! must be refused here once &initial exists
+         ! the static engine (docs/static.md); decks it cannot honour were refused by the deck reader
          call static_run(deck, model, cli%output, cli%force, clock0, stat, errmsg)
          if (stat /= 0) call fail(stat, errmsg)
          return
@@ -125,6 +127,7 @@ contains
       solver%guard = deck%solver%dt_limit == 'power' .and. deck%solver%dt == 0 .and. &
                      model%dt > deck%solver%dt_factor*model%dt_critical*(1 + 1.0e-12_wp)
       solver%guard_after = model%load%end_time()
+      if (any(deck%initial%velocity /= 0)) call initial_velocity_apply(solver, model%load%free, deck%initial%velocity)
       call out%open(cli%output, cli%force, deck, model, stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
       call out%file%attr(out%file%id, 'method', 'explicit')
@@ -136,6 +139,10 @@ contains
          call out%file%attr(out%file%id, 'omega_max_power', sqrt(omega2_power))
          call out%file%attr(out%file%id, 'dt_stable_estimate', 2/sqrt(omega2_power))
       end if
+      ! issue 12: the kind of run and the energy put in at t = 0 (docs/output.md)
+      call out%file%attr(out%file%id, 'dynamic', merge(1, 0, deck%dynamic))
+      call out%file%attr(out%file%id, 'convergence_test', merge(1, 0, deck%convergence_test))
+      call out%file%attr(out%file%id, 'initial_kinetic_energy', solver%initial_kinetic)
       call out%sample(solver, model, 0.0_wp)
 
       call tuner%init(model%stiff%nnode >= omp_min_nodes)
@@ -150,6 +157,7 @@ contains
       converged = .false.
       done = .false.
       status = 'not converged'
+      if (.not. deck%convergence_test) status = trim(merge('dynamic            ', 'no convergence test', deck%dynamic))
       residual = huge(1.0_wp)
       isnap = 1
       snap_step = next_snapshot(deck, model%dt, isnap, 0_i8, 0.0_wp)
@@ -185,7 +193,7 @@ contains
                status = 'contact solver failure'
                done = .true.
             else
-               if (mod(solver%step, check) == 0 .and. solver%time >= t_load_end) then
+               if (deck%convergence_test .and. mod(solver%step, check) == 0 .and. solver%time >= t_load_end) then
                   residual = solver%residual(model%load)
                   kin_ratio = merge(solver%kinetic/solver%strain, solver%kinetic, solver%strain > 0)
                   if (residual < deck%solver%tol_residual .and. kin_ratio < deck%solver%tol_kinetic) then
@@ -364,6 +372,9 @@ contains
       associate (c => model%contact)
          if (converged) then
             conv = 'yes (relative residual '//sci(residual)//' < '//sci(deck%solver%tol_residual)//')'
+         else if (.not. deck%convergence_test) then
+            conv = 'not tested (solver:convergence_test = '''//trim(deck%solver%convergence_test)// &
+                   '''); status: '//status
          else
             conv = 'NO: '//status//' (relative residual '//sci(residual)//', tolerance '// &
                    sci(deck%solver%tol_residual)//')'
@@ -377,6 +388,10 @@ contains
             ': dt '//sci(dt_initial)//' s -> '//sci(model%dt)//' s (element bound)'
          if (model%added_mass > 0) write (output_unit, '(a)') ' added mass          '//sci(model%added_mass)// &
             ' t at '//str(model%scaled_nodes)//' node(s) = '//sci(model%added_mass/model%body_mass)//' x body mass'
+         if (deck%dynamic) write (output_unit, '(a)') ' run                 dynamic: initial velocity ('// &
+            sci(deck%initial%velocity(1))//', '//sci(deck%initial%velocity(2))//') mm/s, no damping, '// &
+            trim(merge('stops when converged or at t_end =', 'ends at t_end =                   ', deck%convergence_test))//' '// &
+            sci(deck%solver%t_end)//' s; initial kinetic energy '//sci(solver%initial_kinetic)//' mJ'
          write (output_unit, '(a)') ' converged           '//conv
          write (output_unit, '(a)') ' energy balance      '//sci(solver%balance_error(c%friction_dissipation, c%normal_work))// &
             ' (relative error; W_ext = '//sci(solver%external_work)//' mJ)'

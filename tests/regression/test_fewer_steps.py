@@ -16,6 +16,8 @@ run with dt_factor = 1.05 on the power estimate starts above the true limit (the
 bounds omega_max from below, so 1.05 x 2/omega_power > 2/omega_max): the guard must catch the
 growing mode, fall back to the element bound, and still reach the same end state.
 """
+import os
+
 import numpy as np
 
 import c2dtest
@@ -89,6 +91,16 @@ def body(t):
     r = t.run(t.deck("baillet_sassi_2002_p1.nml"), "--set", "mesh:level=0", "--set", "solver:damping='none'",
               "--set", "solver:mass_scaling=1e-8", name="refused")
     t.expect_exit(r, 1)
+    t.check(r, "nothing written (refused, no damping)", not os.path.exists(r.h5), "no out.h5",
+            "present" if os.path.exists(r.h5) else "no out.h5")
+    # ... and with an initial velocity (issue 12's &initial), even with automatic damping
+    r = t.run(t.deck("impact_bar_p1.nml"), "--set", "solver:damping='auto'", "--set", "solver:mass_scaling=1e-8",
+              name="refused_velocity")
+    t.expect_exit(r, 1)
+    t.check(r, "error names mass scaling and the initial velocity", "mass_scaling" in r.stderr and
+            "initial:velocity" in r.stderr, "both named", r.stderr.strip()[:120])
+    t.check(r, "nothing written (refused, initial velocity)", not os.path.exists(r.h5), "no out.h5",
+            "present" if os.path.exists(r.h5) else "no out.h5")
 
 
 if __name__ == "__main__":
