@@ -13,6 +13,11 @@
 #include <math.h>
 #include <suitesparse/cholmod.h>
 
+/* OpenBLAS, when contact2d is linked against it (CMakeLists.txt, docs/static.md "BLAS"): weak, so
+ * that the reference BLAS (no such symbol) links too. The factorisation runs on one BLAS thread:
+ * a threaded OpenBLAS must not start threads beside the OpenMP kernels. */
+extern void openblas_set_num_threads(int) __attribute__((weak));
+
 typedef struct {
     cholmod_common common;
     cholmod_factor *L;
@@ -92,6 +97,7 @@ int c2d_chol_factor(int n, long nnz, const int *ti, const int *tj, const double 
     if (!h) return 1;
     h->n = n;
     h->nlast = nlast;
+    if (openblas_set_num_threads) openblas_set_num_threads(1);
     cholmod_start(&h->common);
     h->common.print = 0;
     h->common.supernodal = CHOLMOD_SUPERNODAL;
