@@ -10,12 +10,20 @@ module contact2d_driver
    use contact2d_model, only: model_t, model_build
    use contact2d_explicit, only: explicit_t
    use contact2d_output, only: output_t
+   use contact2d_outpath, only: outpath_t
+   use contact2d_sys, only: sys_signals_install, sys_signal_pending, sys_strerror
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
    public :: driver_main
 
    !> Seconds between progress-line updates.
    real(wp), parameter :: progress_seconds = 0.5_wp
+
+   !> This run's output names and lock: fail() releases them (docs/output.md, output safety).
+   type(outpath_t), save :: opath
+   !> Keep OUT.h5.<pid>.partial when the run fails (it holds what was written so far).
+   logical, save :: keep_partial = .false.
 
 contains
 
@@ -53,10 +61,11 @@ contains
 
       call deck_read(cli%deck, cli%sets, deck, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
-      inquire (file=cli%output, exist=exists)
-      if (exists .and. .not. cli%force) then
-         call fail(1, "output file '"//cli%output//"' exists; use --force to overwrite it or -o to choose another")
-      end if
+      ! output names before any set-up (contact2d_outpath)
+      call opath%check(cli%output, cli%deck, cli%force, deck%output%xdmf, stat, errmsg)
+      if (stat /= 0) call fail(1, errmsg)
+      call memory_check(deck, stat, errmsg)
+      if (stat /= 0) call fail(1, errmsg)
       call model_build(deck, model, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
 
@@ -91,14 +100,22 @@ contains
 
       call solver%init(model%stiff, model%load, model%dt, model%damping, deck%solver%alpha, &
                        deck%solver%damping_interval)
-      call out%open(cli%output, cli%force, deck, model, stat, errmsg)
+      ! the lock, then the temporary file; SIGINT/SIGTERM from now on end the run cleanly
+      call opath%acquire(stat, errmsg)
+      if (stat /= 0) call fail(1, errmsg)
+      stat = sys_signals_install()
+      if (stat /= 0) call fail(2, 'cannot install the SIGINT/SIGTERM handler: '//sys_strerror(stat))
+      call out%open(opath%partial, .false., deck, model, stat, errmsg, sidecar=opath%xmf_partial, &
+                    target=opath%target)
       if (stat /= 0) call fail(2, errmsg)
+      keep_partial = .true.
       call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
       if (omega2_power > 0) then
          call out%file%attr(out%file%id, 'omega_max_power', sqrt(omega2_power))
          call out%file%attr(out%file%id, 'dt_stable_estimate', 2/sqrt(omega2_power))
       end if
       call out%sample(solver, model, 0.0_wp)
+      call check_output(out)
 
       call system_clock(clock1)
       timings = 0
@@ -125,10 +142,17 @@ contains
             sampled = .false.
             if (solver%step == snap_step) then
                call out%snapshot(solver, model)
-               isnap = isnap + 1
-               snap_step = next_snapshot(deck, model%dt, isnap)
+               call check_output(out)
+               ! snapshot times that fall in one step share its snapshot (docs/deck.md)
+               do while (snap_step <= solver%step)
+                  isnap = isnap + 1
+                  snap_step = next_snapshot(deck, model%dt, isnap)
+               end do
             end if
-            if (solver%blown_up) then
+            if (sys_signal_pending() /= 0) then
+               status = 'interrupted'
+               done = .true.
+            else if (solver%blown_up) then
                status = 'blow-up'
                done = .true.
             else if (model%contact%stat /= 0) then
@@ -151,6 +175,7 @@ contains
                call system_clock(tick)
                residual = solver%residual(model%load)
                call out%sample(solver, model, residual)
+               call check_output(out)
                sampled = .true.
                call system_clock(clock1)
                t_output = t_output + (clock1 - tick)
@@ -170,8 +195,19 @@ contains
       call system_clock(clock1)
       wall = real(clock1 - clock0, wp)/rate
       call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
+      if (stat /= 0) call fail(2, errmsg//'; what was written so far is in '//opath%partial)
+      ! complete: move the files into place (every end: converged or not, blow-up, interrupted)
+      call opath%publish(stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
+      keep_partial = .false.
       call summary(model, deck, solver, cli%output, converged, status, residual, wall, timings)
+      if (status == 'interrupted') then
+         stat = sys_signal_pending()
+         write (error_unit, '(a)') program_name//': interrupted by '//trim(merge('SIGINT ', 'SIGTERM', stat == 2))// &
+            ' at step '//str(solver%step)//' (t = '//str(solver%time)//' s); '//cli%output// &
+            " holds the state at that step (status 'interrupted')"
+         stop 128 + stat, quiet=.true.
+      end if
       if (solver%blown_up) then
          call fail(2, 'the run blew up at step '//str(solver%step)//' (t = '//str(solver%time)// &
                    ' s): kinetic energy '//str(solver%kinetic)//' mJ exceeds 1000 x the work put in ('// &
@@ -193,13 +229,51 @@ contains
       if (k <= deck%output%nsnapshot) step = max(1_i8, ceiling(deck%output%snapshot_times(k)/dt - 1.0e-9_wp, i8))
    end function next_snapshot
 
-   !> One line on stderr, exit with the code.
+   !> One line on stderr, release the output lock (removing temporary files unless the partial
+   !> result is worth keeping), exit with the code.
    subroutine fail(code, msg)
       integer, intent(in) :: code
       character(len=*), intent(in) :: msg
       write (error_unit, '(a)') program_name//': error: '//msg
+      call opath%abandon(keep_partial)
       stop code, quiet=.true.
    end subroutine fail
+
+   !> Stop at once (exit 2) when a write to the output failed; what was flushed before stays
+   !> readable in the temporary file, which is named in the message.
+   subroutine check_output(out)
+      type(output_t), intent(in) :: out
+      if (.not. out%file%ok()) call fail(2, out%file%errmsg//'; the run stopped; what was written before is in '// &
+                                         opath%partial)
+   end subroutine check_output
+
+   !> Refuse a mesh whose arrays do not fit in the memory this process may use: one line naming
+   !> the mesh and the bytes asked for, before any output. The probe is an allocation of the
+   !> estimated size (not touched), so a limit on the address space (ulimit -v) is honoured;
+   !> memory overcommitted by the system cannot be detected this way.
+   subroutine memory_check(deck, stat, errmsg)
+      type(deck_t), intent(in) :: deck
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      real(wp) :: nel, nnode, bytes
+      real(wp), allocatable :: probe(:)
+      integer :: ios
+      nel = real(deck%mesh%nx, wp)*real(deck%mesh%ny, wp)*4.0_wp**deck%mesh%level
+      nnode = (real(deck%mesh%nx, wp)*2.0_wp**deck%mesh%level + 1)*(real(deck%mesh%ny, wp)*2.0_wp**deck%mesh%level + 1)
+      ! nodal arrays of the model, the integrator and the output (about 40 reals per node),
+      ! connectivity, element shape index and stress (about 12 words per element)
+      bytes = 8*(40*nnode + 12*nel)
+      allocate (probe(int(bytes/8, i8)), stat=ios)
+      if (ios /= 0) then
+         stat = 1
+         errmsg = 'mesh '//str(nint(nel, i8))//' elements, '//str(nint(nnode, i8))//' nodes: cannot allocate the '// &
+                  str(nint(bytes/2.0_wp**20, i8))//' MiB it needs (allocation failed)'
+         return
+      end if
+      deallocate (probe)
+      stat = 0
+      errmsg = ''
+   end subroutine memory_check
 
    !> A real with a fixed number of decimals.
    function fixed(x, decimals) result(s)
@@ -207,6 +281,13 @@ contains
       integer, intent(in) :: decimals
       character(len=:), allocatable :: s
       character(len=32) :: buf, fmt
+      if (.not. ieee_is_finite(x)) then
+         s = sci(x)
+         return
+      else if (abs(x) >= 1.0e15_wp) then
+         s = sci(x)    ! f0.d would not fit the buffer
+         return
+      end if
       write (fmt, '(a,i0,a)') '(f0.', decimals, ')'
       write (buf, fmt) x
       s = trim(buf)

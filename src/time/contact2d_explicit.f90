@@ -14,6 +14,7 @@ module contact2d_explicit
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    use contact2d_loading, only: loading_t
    use contact2d_contact, only: contact_t
+   use contact2d_sys, only: sys_signal_pending
    implicit none
    private
    public :: explicit_t, damping_none, damping_given, damping_auto
@@ -108,7 +109,9 @@ contains
       end if
    end subroutine explicit_init
 
-   !> Run up to nsteps steps; stops early (blown_up = .true.) if the energy runs away.
+   !> Run up to nsteps steps; stops early (blown_up = .true.) if the energy runs away, after a
+   !> failed contact solve (contact%stat /= 0) and when SIGINT/SIGTERM arrived (polled once per
+   !> step: a read of a flag, no I/O).
    subroutine explicit_advance(this, stiff, load, contact, nsteps)
       class(explicit_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
@@ -184,6 +187,7 @@ contains
             this%blown_up = .true.
             return
          end if
+         if (contact%stat /= 0 .or. sys_signal_pending() /= 0) return
       end do
    end subroutine explicit_advance
 
