@@ -37,6 +37,7 @@ contains
       integer :: stat, i, nstep, isnap
       integer(i8) :: clock0, clock1, clock_last_progress, rate, t_steps, t_output, tick, snap_step
       real(wp) :: residual, t_load_end, omega2_power, timings(4), wall, kin_ratio
+      real(wp) :: scale_peak, strain_peak, scale_now
       logical :: converged, done, interactive, exists, sampled
       real(wp), allocatable :: extra(:, :)
 
@@ -129,6 +130,8 @@ contains
       done = .false.
       status = 'not converged'
       residual = huge(1.0_wp)
+      scale_peak = 0
+      strain_peak = 0
       isnap = 1
       snap_step = next_snapshot(deck, model%dt, isnap)
       associate (hist => int(deck%output%history_interval, i8), check => int(deck%solver%check_interval, i8))
@@ -160,8 +163,11 @@ contains
                done = .true.
             else
                if (mod(solver%step, check) == 0 .and. solver%time >= t_load_end) then
-                  residual = solver%residual(model%load)
-                  kin_ratio = merge(solver%kinetic/solver%strain, solver%kinetic, solver%strain > 0)
+                  ! absolute floors: the largest force scale and strain energy reached so far
+                  residual = solver%residual(model%load, scale_peak, scale_now)
+                  scale_peak = max(scale_peak, scale_now)
+                  strain_peak = max(strain_peak, solver%strain)
+                  kin_ratio = merge(solver%kinetic/strain_peak, solver%kinetic, strain_peak > 0)
                   if (residual < deck%solver%tol_residual .and. kin_ratio < deck%solver%tol_kinetic) then
                      converged = .true.
                      status = 'converged'
@@ -173,7 +179,9 @@ contains
             end if
             if (mod(solver%step, hist) == 0 .or. done) then
                call system_clock(tick)
-               residual = solver%residual(model%load)
+               residual = solver%residual(model%load, scale_peak, scale_now)
+               scale_peak = max(scale_peak, scale_now)
+               strain_peak = max(strain_peak, solver%strain)
                call out%sample(solver, model, residual)
                call check_output(out)
                sampled = .true.

@@ -320,10 +320,15 @@ contains
    end subroutine rayleigh_blocks
 
    !> Out-of-balance force on the free dofs at t_n (contact forces included), relative to the
-   !> largest of the reactions, the loads and the contact forces (SPEC section 5).
-   real(wp) function explicit_residual(this, load) result(rel)
+   !> largest of the reactions, the loads and the contact forces (SPEC section 5), or to `floor`
+   !> when that is larger: the caller passes the largest scale reached during the run, so a
+   !> stress-free end state (load removed) still converges (docs/output.md). scale_out: this
+   !> step's scale [N].
+   real(wp) function explicit_residual(this, load, floor, scale_out) result(rel)
       class(explicit_t), intent(in) :: this
       type(loading_t), intent(in) :: load
+      real(wp), intent(in), optional :: floor
+      real(wp), intent(out), optional :: scale_out
       real(wp) :: rfree, scale, r
       integer :: i, j
       rfree = 0
@@ -339,6 +344,8 @@ contains
          end do
       end do
       !$omp end parallel do
+      if (present(scale_out)) scale_out = scale
+      if (present(floor)) scale = max(scale, floor)
       if (scale > 0) then
          rel = rfree/scale
       else
