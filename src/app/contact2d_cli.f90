@@ -56,6 +56,10 @@ contains
             end if
             i = i + 1
             cli%output = argument(i)   ! in full, whatever its length
+            if (len(cli%output) == 0) then
+               errmsg = trim(arg)//': the output file name is empty'
+               return
+            end if
          case ('--set')
             if (i == n) then
                errmsg = '--set needs group:variable=value'

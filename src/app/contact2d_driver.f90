@@ -43,7 +43,7 @@ contains
 
       call system_clock(clock0, rate)
       call cli_parse(cli, stat, errmsg)
-      if (stat /= 0) call fail(1, errmsg//new_line('a')//usage)
+      if (stat /= 0) call fail(1, errmsg//' (usage: contact2d --help)')
       if (cli%help) then
          write (output_unit, '(a)') usage
          write (output_unit, '(a)') 'Runs the deck and writes its HDF5 file (default: <deck stem>.h5 here).'
