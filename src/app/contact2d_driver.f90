@@ -11,7 +11,7 @@ module contact2d_driver
    use contact2d_explicit, only: explicit_t
    use contact2d_output, only: output_t
    use contact2d_outpath, only: outpath_t
-   use contact2d_sys, only: sys_signals_install, sys_signal_pending, sys_strerror
+   use contact2d_sys, only: sys_signals_install, sys_signal_pending, sys_strerror, sys_exit_now
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
@@ -203,7 +203,7 @@ contains
       call system_clock(clock1)
       wall = real(clock1 - clock0, wp)/rate
       call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
-      if (stat /= 0) call fail(2, errmsg//'; what was written so far is in '//opath%partial)
+      if (stat /= 0) call fail_write(errmsg//'; what was written so far is in '//opath%partial)
       ! complete: move the files into place (every end: converged or not, blow-up, interrupted)
       call opath%publish(stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
@@ -247,12 +247,23 @@ contains
       stop code, quiet=.true.
    end subroutine fail
 
+   !> fail() after a failed write: the file is left as it is on disk (no HDF5 exit handler
+   !> touches it again), the lock released, exit 2.
+   subroutine fail_write(msg)
+      character(len=*), intent(in) :: msg
+      write (error_unit, '(a)') program_name//': error: '//msg
+      call opath%abandon(.true.)
+      flush (output_unit)
+      flush (error_unit)
+      call sys_exit_now(2)
+   end subroutine fail_write
+
    !> Stop at once (exit 2) when a write to the output failed; what was flushed before stays
    !> readable in the temporary file, which is named in the message.
    subroutine check_output(out)
       type(output_t), intent(in) :: out
-      if (.not. out%file%ok()) call fail(2, out%file%errmsg//'; the run stopped; what was written before is in '// &
-                                         opath%partial)
+      if (.not. out%file%ok()) call fail_write(out%file%errmsg//'; the run stopped; what was written before is in '// &
+                                               opath%partial)
    end subroutine check_output
 
    !> Refuse a mesh whose arrays do not fit in the memory this process may use: one line naming

@@ -29,7 +29,7 @@ static volatile sig_atomic_t c2d_signal = 0;
 
 static void c2d_handler(int sig) { c2d_signal = sig; }
 
-/* Install the SIGINT/SIGTERM handler (stop at the end of the current step). */
+/* Install the SIGINT/SIGTERM handler (stop at the end of the current step); ignore SIGXFSZ. */
 int c2d_signals_install(void) {
   struct sigaction sa;
   memset(&sa, 0, sizeof sa);
@@ -38,6 +38,9 @@ int c2d_signals_install(void) {
   sa.sa_flags = SA_RESTART;
   if (sigaction(SIGINT, &sa, NULL) != 0) return errno;
   if (sigaction(SIGTERM, &sa, NULL) != 0) return errno;
+  /* a file-size limit (ulimit -f) makes the write fail with EFBIG, reported like a full disk,
+   * instead of killing the process */
+  signal(SIGXFSZ, SIG_IGN);
   return 0;
 }
 
@@ -139,6 +142,11 @@ int c2d_publish(const char *from, const char *to, int replace) {
   if (unlink(from) != 0) return errno;
   return 0;
 }
+
+/* End the process at once with the code, running no exit handlers: after a failed write the
+ * HDF5 library's own exit handler would try to flush the broken file again (and was seen to
+ * crash doing so); what was flushed before stays as it is on disk. */
+void c2d_exit_now(int code) { _exit(code); }
 
 /* Remove a file (0 or errno; ENOENT counts as success). */
 int c2d_remove(const char *path) {

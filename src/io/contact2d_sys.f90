@@ -7,7 +7,7 @@ module contact2d_sys
    implicit none
    private
    public :: sys_signals_install, sys_signal_pending, sys_strerror, sys_path_info, sys_dir_writable
-   public :: sys_lock, sys_unlock, sys_publish, sys_remove, sys_h5_reason, sys_getpid
+   public :: sys_lock, sys_unlock, sys_publish, sys_remove, sys_h5_reason, sys_getpid, sys_exit_now
    public :: kind_missing, kind_file, kind_directory, kind_device, kind_fifo, kind_socket, &
              kind_other, kind_dangling, kind_names
 
@@ -63,6 +63,10 @@ module contact2d_sys
          character(kind=c_char) :: buf(*)
          integer(c_int), value :: len
       end subroutine c2d_h5_reason
+      subroutine c2d_exit_now(code) bind(C, name='c2d_exit_now')
+         import :: c_int
+         integer(c_int), value :: code
+      end subroutine c2d_exit_now
       integer(c_int) function getpid() bind(C, name='getpid')
          import :: c_int
       end function getpid
@@ -79,6 +83,12 @@ contains
    integer function sys_signal_pending() result(sig)
       sig = int(c2d_signal_pending())
    end function sys_signal_pending
+
+   !> End the process now with the code, without exit handlers (the caller flushes its units).
+   subroutine sys_exit_now(code)
+      integer, intent(in) :: code
+      call c2d_exit_now(int(code, c_int))
+   end subroutine sys_exit_now
 
    integer function sys_getpid() result(pid)
       pid = int(getpid())
