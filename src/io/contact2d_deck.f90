@@ -6,6 +6,13 @@
 !> Groups: &mesh, &material, &solver, &output and &contact once each, &dirichlet and &traction as
 !> many times as needed. Each group is read from its own block with iostat/iomsg; a failure
 !> names the deck line of the group and the runtime's message.
+!>
+!> Nothing is misread (issue 9): lines are read whole and refused beyond line_len, '&end' and
+!> nested groups are refused, only regular files up to max_deck_bytes are read. To add a
+!> variable: a string is read into a local of length line_len and checked with too_long()
+!> against its field's length; a real is added to any_not_finite() in validate() (it uses
+!> check_finite of contact2d_checks, which must run before any comparison of the value), then
+!> range-checked; derived quantities are checked in the model with check_positive.
 module contact2d_deck
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str, lower, join
@@ -194,7 +201,7 @@ contains
       character(len=256) :: msg, chunk
       character(len=line_len), allocatable :: tmp(:)
       character(len=:), allocatable :: buf, line
-      integer :: unit, n, ios, kind, err, sz, pos
+      integer :: unit, n, ios, kind, err, sz, pos, total, last_nonblank
       integer(c_long_long) :: dev, ino, bytes
 
       stat = 1
@@ -226,22 +233,27 @@ contains
       pos = 0
       n = 0
       do
-         ! one whole record, in chunks (non-advancing), so that nothing is cut
+         ! one whole record, in chunks (non-advancing), so that nothing is cut; beyond line_len
+         ! only the position of the last non-blank is kept (for the message)
          line = ''
+         total = 0
+         last_nonblank = 0
          do
             read (unit, '(a)', advance='no', size=sz, iostat=ios, iomsg=msg) chunk
-            line = line//chunk(1:sz)
+            if (total < line_len) line = line//chunk(1:min(sz, line_len - total))
+            if (len_trim(chunk(1:sz)) > 0) last_nonblank = total + len_trim(chunk(1:sz))
+            total = total + sz
             if (ios /= 0) exit
          end do
-         if (is_iostat_end(ios) .and. len(line) == 0) exit
+         if (is_iostat_end(ios) .and. total == 0) exit
          if (ios /= 0 .and. .not. is_iostat_eor(ios) .and. .not. is_iostat_end(ios)) then
             errmsg = path//':'//str(n + 1)//': cannot read: '//trim(msg)
             close (unit)
             return
          end if
          n = n + 1
-         if (len_trim(line) > line_len) then
-            errmsg = path//':'//str(n)//': line has '//str(len_trim(line))//' characters, more than '// &
+         if (last_nonblank > line_len) then
+            errmsg = path//':'//str(n)//': line has '//str(last_nonblank)//' characters, more than '// &
                      str(line_len)//'; split it (a namelist value list may span lines)'
             close (unit)
             return
