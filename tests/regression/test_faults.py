@@ -130,6 +130,20 @@ def body(t):
     rc, err, _ = finish(start(t, folder, quick[0], ["--force"]))
     t.check_equal(name, "a later --force run succeeds", 0, rc)
 
+    # ---- --force onto a result another process holds open ------------------------------------
+    name = "force_while_open"
+    folder = t.subdir(name)
+    rc, err, _ = finish(start(t, folder, quick[0], []))
+    with h5py.File(os.path.join(folder, "out.h5"), "r") as held:
+        u_old = held["final/displacement"][:]
+        rc, err, _ = finish(start(t, folder, quick[0], ["--force", "--set", "dirichlet#3:values=-2e-3"]))
+        t.check_equal(name, "--force run exit code", 0, rc)
+        t.check(name, "the open handle still reads the old, intact file",
+                np.array_equal(held["final/displacement"][:], u_old), True, True)
+    with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+        t.check_close(name, "new result in place: u_y at the top = -2e-3", -2e-3,
+                      f["final/displacement"][:, 1].min(), rtol=1e-8, reason="the prescribed value")
+
     # ---- two runs aimed at one output -------------------------------------------------------
     name = "concurrent"
     folder = t.subdir(name)
