@@ -13,6 +13,7 @@ module contact2d_driver
    use contact2d_outpath, only: outpath_t
    use contact2d_sys, only: sys_signals_install, sys_signal_pending, sys_strerror, sys_exit_now
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use contact2d_static_run, only: static_run, static_distance
    implicit none
    private
    public :: driver_main
@@ -40,8 +41,12 @@ contains
       real(wp) :: scale_peak, strain_peak, scale_now
       logical :: converged, done, interactive, exists, sampled
       real(wp), allocatable :: extra(:, :)
+      real(wp) :: static_dist
+      logical :: static_converged, static_written
+      character(len=:), allocatable :: static_msg
 
       call system_clock(clock0, rate)
+      static_dist = huge(1.0_wp)
       call cli_parse(cli, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg//' (usage: contact2d --help)')
       if (cli%help) then
@@ -82,6 +87,24 @@ contains
       write (output_unit, '(a)') 'mesh '//str(model%mesh%nx)//' x '//str(model%mesh%ny)//' = '// &
          str(model%mesh%nel)//' Q1 elements, '//str(model%mesh%nnode)//' nodes, '// &
          str(model%stiff%nshape)//' distinct element matrix(es)'
+      if (deck%solver%method == 'static') then
+         ! the static engine (docs/static.md); a deck with an initial velocity is dynamic and
+         ! must be refused here once &initial exists
+         ! output safety as for the explicit engine: lock, temporary file, move into place
+         call opath%acquire(stat, errmsg)
+         if (stat /= 0) call fail(1, errmsg)
+         call static_run(deck, model, opath%partial, .false., clock0, stat, errmsg, sidecar=opath%xmf_partial, &
+                         target=opath%target, written=static_written)
+         if (static_written) then
+            call opath%publish(i, static_msg)
+            if (i /= 0) call fail(2, static_msg)
+         else if (stat == 2) then
+            call fail_write(errmsg//'; what was written so far is in '//opath%partial)
+         end if
+         if (stat /= 0) call fail(stat, errmsg)
+         call opath%abandon(.false.)
+         return
+      end if
       omega2_power = 0
       if (deck%solver%power_iterations > 0) then
          if (model%contact%penalty) then
@@ -110,6 +133,7 @@ contains
                     target=opath%target)
       if (stat /= 0) call fail(2, errmsg)
       keep_partial = .true.
+      call out%file%attr(out%file%id, 'method', 'explicit')
       call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
       if (omega2_power > 0) then
          call out%file%attr(out%file%id, 'omega_max_power', sqrt(omega2_power))
@@ -200,6 +224,16 @@ contains
       timings(2) = real(t_steps, wp)/rate
       timings(3) = real(model%contact%clock_ticks, wp)/rate
       timings(4) = real(t_output, wp)/rate
+      ! solver:compare_static: energy distance of the end state to the static solution (issue 14)
+      if (deck%solver%compare_static) then
+         call static_distance(deck, model, solver%u, static_dist, static_converged, stat, errmsg)
+         if (stat /= 0) then
+            write (error_unit, '(a)') program_name//': warning: compare_static: '//errmsg
+         else
+            call out%file%attr(out%file%id, 'static_distance_energy', static_dist)
+            call out%file%attr(out%file%id, 'static_converged', merge(1, 0, static_converged))
+         end if
+      end if
       call system_clock(clock1)
       wall = real(clock1 - clock0, wp)/rate
       call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
@@ -209,6 +243,10 @@ contains
       if (stat /= 0) call fail(2, errmsg)
       keep_partial = .false.
       call summary(model, deck, solver, cli%output, converged, status, residual, wall, timings)
+      if (deck%solver%compare_static .and. static_dist < huge(1.0_wp)) then
+         write (output_unit, '(a)') ' static distance     '//sci(static_dist)//' (energy norm ||u - u_static||_K / '// &
+            '||u_static||_K'//trim(merge('); static NOT converged', ')                      ', .not. static_converged))
+      end if
       if (status == 'interrupted') then
          stat = sys_signal_pending()
          write (error_unit, '(a)') program_name//': interrupted by '//trim(merge('SIGINT ', 'SIGTERM', stat == 2))// &
