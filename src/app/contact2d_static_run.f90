@@ -212,7 +212,11 @@ contains
             ' s (assembly + factorisation '//fixed(st%time_factor, 3)//', condensation '// &
             fixed(st%time_condense, 3)//', increments '//fixed(st%time_pdas, 3)//')'
          write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s'
-         write (output_unit, '(a)') ' output              '//path
+         if (present(target)) then
+            write (output_unit, '(a)') ' output              '//target
+         else
+            write (output_unit, '(a)') ' output              '//path
+         end if
          write (output_unit, '(a)') repeat('-', 72)
       end subroutine summary
    end subroutine static_run
