@@ -52,7 +52,7 @@ contains
       character(len=:), allocatable, intent(inout) :: errmsg
       bad = .not. ieee_is_finite(x)
       if (bad) then
-         errmsg = name//' = '//nonfinite_text(x)//' is not a finite number'
+         errmsg = name//' = '//nonfinite_text(x)//' must be finite'
          return
       end if
       if (abs(x) == huge(x)) return   ! the 'not given' marker
