@@ -36,13 +36,8 @@ endif()
 if(CONTACT2D_USE_PFUNIT AND PFUNIT_FOUND)
   set(CONTACT2D_UNIT_TEST_BACKEND "pFUnit")
   message(STATUS "contact2d unit tests: using pFUnit ${PFUNIT_VERSION} (add_pfunit_ctest)")
-  # '&'-continued @-directives exist since pFUnit 4.16; 4.16.0 also wrongly
-  # joined ordinary continuation lines (pFUnit issue #537).
-  if(PFUNIT_VERSION VERSION_LESS 4.16 OR PFUNIT_VERSION VERSION_EQUAL 4.16.0)
-    message(WARNING "pFUnit ${PFUNIT_VERSION} does not handle '&'-continued @-directives "
-                    "correctly; .pf files using them will not compile. Use a newer pFUnit "
-                    "or -DCONTACT2D_USE_PFUNIT=OFF.")
-  endif()
+  # The .pf files use no '&'-continued @-directives (pFUnit 4.14 rejects them; the
+  # fallback rejects them too), so any pFUnit 4 from 4.14 on builds them.
 else()
   set(CONTACT2D_UNIT_TEST_BACKEND "fallback")
   find_package(Python3 COMPONENTS Interpreter REQUIRED)

@@ -28,7 +28,7 @@ contains
       type(cli_t), intent(out) :: cli
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      character(len=arg_len) :: arg
+      character(len=:), allocatable :: arg
       integer :: i, n, nset
 
       stat = 1
@@ -39,8 +39,8 @@ contains
       nset = 0
       i = 1
       do while (i <= n)
-         call get_command_argument(i, arg)
-         select case (trim(arg))
+         arg = argument(i)
+         select case (arg)
          case ('-h', '--help')
             cli%help = .true.
          case ('--version')
@@ -59,8 +59,11 @@ contains
                return
             end if
             i = i + 1
-            call get_command_argument(i, arg)
-            cli%output = trim(arg)
+            cli%output = argument(i)   ! in full, whatever its length
+            if (len(cli%output) == 0) then
+               errmsg = trim(arg)//': the output file name is empty'
+               return
+            end if
          case ('--set')
             if (i == n) then
                errmsg = '--set needs group:variable=value'
@@ -68,9 +71,15 @@ contains
             end if
             i = i + 1
             nset = nset + 1
-            call get_command_argument(i, cli%sets(nset))
+            arg = argument(i)
+            if (len(arg) > arg_len) then
+               errmsg = '--set argument '//arg(1:40)//'... is longer than the '//itoa(arg_len)// &
+                        ' characters accepted'
+               return
+            end if
+            cli%sets(nset) = arg
          case default
-            if (arg(1:1) == '-') then
+            if (index(arg, '-') == 1) then
                errmsg = "unknown option '"//trim(arg)//"'"
                return
             end if
@@ -78,7 +87,7 @@ contains
                errmsg = "more than one deck given ('"//cli%deck//"' and '"//trim(arg)//"')"
                return
             end if
-            cli%deck = trim(arg)
+            cli%deck = arg
          end select
          i = i + 1
       end do
@@ -91,6 +100,24 @@ contains
       stat = 0
       errmsg = ''
    end subroutine cli_parse
+
+   !> Command argument i in full (deferred length: never cut).
+   function argument(i) result(a)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: a
+      integer :: l
+      call get_command_argument(i, length=l)
+      allocate (character(len=l) :: a)
+      if (l > 0) call get_command_argument(i, a)
+   end function argument
+
+   function itoa(i) result(s)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: s
+      character(len=16) :: buf
+      write (buf, '(i0)') i
+      s = trim(buf)
+   end function itoa
 
    !> File name without directory and extension.
    function stem(path) result(s)

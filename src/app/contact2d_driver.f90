@@ -10,6 +10,9 @@ module contact2d_driver
    use contact2d_model, only: model_t, model_build
    use contact2d_explicit, only: explicit_t
    use contact2d_output, only: output_t
+   use contact2d_outpath, only: outpath_t
+   use contact2d_sys, only: sys_signals_install, sys_signal_pending, sys_strerror, sys_exit_now
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use contact2d_threads, only: thread_tuner_t
    use contact2d_omp_env, only: omp_env_passive
    use contact2d_stiffness, only: omp_min_nodes
@@ -21,6 +24,11 @@ module contact2d_driver
 
    !> Seconds between progress-line updates.
    real(wp), parameter :: progress_seconds = 0.5_wp
+
+   !> This run's output names and lock: fail() releases them (docs/output.md, output safety).
+   type(outpath_t), save :: opath
+   !> Keep OUT.h5.<pid>.partial when the run fails (it holds what was written so far).
+   logical, save :: keep_partial = .false.
 
 contains
 
@@ -34,19 +42,21 @@ contains
       integer :: stat, i, nstep, isnap
       integer(i8) :: clock0, clock1, clock_last_progress, rate, t_steps, t_output, tick, snap_step
       real(wp) :: residual, t_load_end, omega2_power, timings(4), wall, kin_ratio
+      real(wp) :: scale_peak, strain_peak, scale_now
       logical :: converged, done, interactive, exists, sampled
       real(wp), allocatable :: extra(:, :)
       real(wp) :: dt_initial
       type(thread_tuner_t) :: tuner
       integer(i8) :: fallback_step
       real(wp) :: static_dist
-      logical :: static_converged
+      logical :: static_converged, static_written
+      character(len=:), allocatable :: static_msg
 
       call omp_env_passive()   ! may re-execute the program with OMP_WAIT_POLICY=passive
       call system_clock(clock0, rate)
       static_dist = huge(1.0_wp)
       call cli_parse(cli, stat, errmsg)
-      if (stat /= 0) call fail(1, errmsg//new_line('a')//usage)
+      if (stat /= 0) call fail(1, errmsg//' (usage: contact2d --help)')
       if (cli%help) then
          write (output_unit, '(a)') usage
          write (output_unit, '(a)') 'Runs the deck and writes its HDF5 file (default: <deck stem>.h5 here).'
@@ -65,10 +75,11 @@ contains
 
       call deck_read(cli%deck, cli%sets, deck, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
-      inquire (file=cli%output, exist=exists)
-      if (exists .and. .not. cli%force) then
-         call fail(1, "output file '"//cli%output//"' exists; use --force to overwrite it or -o to choose another")
-      end if
+      ! output names before any set-up (contact2d_outpath)
+      call opath%check(cli%output, cli%deck, cli%force, deck%output%xdmf, stat, errmsg)
+      if (stat /= 0) call fail(1, errmsg)
+      call memory_check(deck, stat, errmsg)
+      if (stat /= 0) call fail(1, errmsg)
       call model_build(deck, model, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
       errmsg = initial_velocity_warning(model%load%free, deck%initial%velocity)
@@ -88,8 +99,19 @@ contains
          str(model%stiff%nshape)//' distinct element matrix(es)'
       if (deck%solver%method == 'static') then
          ! the static engine (docs/static.md); decks it cannot honour were refused by the deck reader
-         call static_run(deck, model, cli%output, cli%force, clock0, stat, errmsg)
+         ! output safety as for the explicit engine: lock, temporary file, move into place
+         call opath%acquire(stat, errmsg)
+         if (stat /= 0) call fail(1, errmsg)
+         call static_run(deck, model, opath%partial, .false., clock0, stat, errmsg, sidecar=opath%xmf_partial, &
+                         target=opath%target, written=static_written)
+         if (static_written) then
+            call opath%publish(i, static_msg)
+            if (i /= 0) call fail(2, static_msg)
+         else if (stat == 2) then
+            call fail_write(errmsg//'; what was written so far is in '//opath%partial)
+         end if
          if (stat /= 0) call fail(stat, errmsg)
+         call opath%abandon(.false.)
          return
       end if
       omega2_power = 0
@@ -128,8 +150,15 @@ contains
                      model%dt > deck%solver%dt_factor*model%dt_critical*(1 + 1.0e-12_wp)
       solver%guard_after = model%load%end_time()
       if (any(deck%initial%velocity /= 0)) call initial_velocity_apply(solver, model%load%free, deck%initial%velocity)
-      call out%open(cli%output, cli%force, deck, model, stat, errmsg)
+      ! the lock, then the temporary file; SIGINT/SIGTERM from now on end the run cleanly
+      call opath%acquire(stat, errmsg)
+      if (stat /= 0) call fail(1, errmsg)
+      stat = sys_signals_install()
+      if (stat /= 0) call fail(2, 'cannot install the SIGINT/SIGTERM handler: '//sys_strerror(stat))
+      call out%open(opath%partial, .false., deck, model, stat, errmsg, sidecar=opath%xmf_partial, &
+                    target=opath%target)
       if (stat /= 0) call fail(2, errmsg)
+      keep_partial = .true.
       call out%file%attr(out%file%id, 'method', 'explicit')
       call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
       call out%file%attr(out%file%id, 'dt_limit', trim(deck%solver%dt_limit))
@@ -144,6 +173,7 @@ contains
       call out%file%attr(out%file%id, 'convergence_test', merge(1, 0, deck%convergence_test))
       call out%file%attr(out%file%id, 'initial_kinetic_energy', solver%initial_kinetic)
       call out%sample(solver, model, 0.0_wp)
+      call check_output(out)
 
       call tuner%init(model%stiff%nnode >= omp_min_nodes)
       call system_clock(clock1)
@@ -159,6 +189,8 @@ contains
       status = 'not converged'
       if (.not. deck%convergence_test) status = trim(merge('dynamic            ', 'no convergence test', deck%dynamic))
       residual = huge(1.0_wp)
+      scale_peak = 0
+      strain_peak = 0
       isnap = 1
       snap_step = next_snapshot(deck, model%dt, isnap, 0_i8, 0.0_wp)
       associate (hist => int(deck%output%history_interval, i8), check => int(deck%solver%check_interval, i8))
@@ -183,10 +215,19 @@ contains
             sampled = .false.
             if (solver%step == snap_step) then
                call out%snapshot(solver, model)
+               call check_output(out)
+               ! snapshot times that fall in one step share its snapshot (docs/deck.md)
                isnap = isnap + 1
+               do while (isnap <= deck%output%nsnapshot)
+                  if (deck%output%snapshot_times(isnap) > solver%time + 1.0e-9_wp*model%dt) exit
+                  isnap = isnap + 1
+               end do
                snap_step = next_snapshot(deck, model%dt, isnap, solver%step, solver%time)
             end if
-            if (solver%blown_up) then
+            if (sys_signal_pending() /= 0) then
+               status = 'interrupted'
+               done = .true.
+            else if (solver%blown_up) then
                status = 'blow-up'
                done = .true.
             else if (model%contact%stat /= 0) then
@@ -194,8 +235,11 @@ contains
                done = .true.
             else
                if (deck%convergence_test .and. mod(solver%step, check) == 0 .and. solver%time >= t_load_end) then
-                  residual = solver%residual(model%load)
-                  kin_ratio = merge(solver%kinetic/solver%strain, solver%kinetic, solver%strain > 0)
+                  ! absolute floors: the largest force scale and strain energy reached so far
+                  residual = solver%residual(model%load, scale_peak, scale_now)
+                  scale_peak = max(scale_peak, scale_now)
+                  strain_peak = max(strain_peak, solver%strain)
+                  kin_ratio = merge(solver%kinetic/strain_peak, solver%kinetic, strain_peak > 0)
                   if (residual < deck%solver%tol_residual .and. kin_ratio < deck%solver%tol_kinetic) then
                      converged = .true.
                      status = 'converged'
@@ -207,8 +251,11 @@ contains
             end if
             if (mod(solver%step, hist) == 0 .or. done) then
                call system_clock(tick)
-               residual = solver%residual(model%load)
+               residual = solver%residual(model%load, scale_peak, scale_now)
+               scale_peak = max(scale_peak, scale_now)
+               strain_peak = max(strain_peak, solver%strain)
                call out%sample(solver, model, residual)
+               call check_output(out)
                sampled = .true.
                call system_clock(clock1)
                t_output = t_output + (clock1 - tick)
@@ -240,14 +287,25 @@ contains
       call out%file%attr(out%file%id, 'dt_initial', dt_initial)
       call out%file%attr(out%file%id, 'dt_fallback_step', int(fallback_step))
       call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
+      if (stat /= 0) call fail_write(errmsg//'; what was written so far is in '//opath%partial)
+      ! complete: move the files into place (every end: converged or not, blow-up, interrupted)
+      call opath%publish(stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
-      call summary(model, deck, solver, cli%output, converged, status, residual, wall, timings, dt_initial, fallback_step)
+      keep_partial = .false.
+            call summary(model, deck, solver, cli%output, converged, status, residual, wall, timings, dt_initial, fallback_step)
       if (tuner%active) write (output_unit, '(a)') ' threads             auto: '//str(tuner%nmax)//' on '// &
          fixed(100*real(tuner%steps(2), wp)/max(1.0_wp, real(sum(tuner%steps), wp)), 1)//' % of the steps, 1 on the rest ('// &
          str(tuner%switches)//' switches; set OMP_NUM_THREADS to fix the count)'
       if (deck%solver%compare_static .and. static_dist < huge(1.0_wp)) then
          write (output_unit, '(a)') ' static distance     '//sci(static_dist)//' (energy norm ||u - u_static||_K / '// &
             '||u_static||_K'//trim(merge('); static NOT converged', ')                      ', .not. static_converged))
+      end if
+      if (status == 'interrupted') then
+         stat = sys_signal_pending()
+         write (error_unit, '(a)') program_name//': interrupted by '//trim(merge('SIGINT ', 'SIGTERM', stat == 2))// &
+            ' at step '//str(solver%step)//' (t = '//str(solver%time)//' s); '//cli%output// &
+            " holds the state at that step (status 'interrupted')"
+         stop 128 + stat, quiet=.true.
       end if
       if (solver%blown_up) then
          call fail(2, 'the run blew up at step '//str(solver%step)//' (t = '//str(solver%time)// &
@@ -273,13 +331,62 @@ contains
                                                                             - 1.0e-9_wp, i8))
    end function next_snapshot
 
-   !> One line on stderr, exit with the code.
+   !> One line on stderr, release the output lock (removing temporary files unless the partial
+   !> result is worth keeping), exit with the code.
    subroutine fail(code, msg)
       integer, intent(in) :: code
       character(len=*), intent(in) :: msg
       write (error_unit, '(a)') program_name//': error: '//msg
+      call opath%abandon(keep_partial)
       stop code, quiet=.true.
    end subroutine fail
+
+   !> fail() after a failed write: the file is left as it is on disk (no HDF5 exit handler
+   !> touches it again), the lock released, exit 2.
+   subroutine fail_write(msg)
+      character(len=*), intent(in) :: msg
+      write (error_unit, '(a)') program_name//': error: '//msg
+      call opath%abandon(.true.)
+      flush (output_unit)
+      flush (error_unit)
+      call sys_exit_now(2)
+   end subroutine fail_write
+
+   !> Stop at once (exit 2) when a write to the output failed; what was flushed before stays
+   !> readable in the temporary file, which is named in the message.
+   subroutine check_output(out)
+      type(output_t), intent(in) :: out
+      if (.not. out%file%ok()) call fail_write(out%file%errmsg//'; the run stopped; what was written before is in '// &
+                                               opath%partial)
+   end subroutine check_output
+
+   !> Refuse a mesh whose arrays do not fit in the memory this process may use: one line naming
+   !> the mesh and the bytes asked for, before any output. The probe is an allocation of the
+   !> estimated size (not touched), so a limit on the address space (ulimit -v) is honoured;
+   !> memory overcommitted by the system cannot be detected this way.
+   subroutine memory_check(deck, stat, errmsg)
+      type(deck_t), intent(in) :: deck
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      real(wp) :: nel, nnode, bytes
+      real(wp), allocatable :: probe(:)
+      integer :: ios
+      nel = real(deck%mesh%nx, wp)*real(deck%mesh%ny, wp)*4.0_wp**deck%mesh%level
+      nnode = (real(deck%mesh%nx, wp)*2.0_wp**deck%mesh%level + 1)*(real(deck%mesh%ny, wp)*2.0_wp**deck%mesh%level + 1)
+      ! nodal arrays of the model, the integrator and the output (about 40 reals per node),
+      ! connectivity, element shape index and stress (about 12 words per element)
+      bytes = 8*(40*nnode + 12*nel)
+      allocate (probe(int(bytes/8, i8)), stat=ios)
+      if (ios /= 0) then
+         stat = 1
+         errmsg = 'mesh '//str(nint(nel, i8))//' elements, '//str(nint(nnode, i8))//' nodes: cannot allocate the '// &
+                  str(nint(bytes/2.0_wp**20, i8))//' MiB it needs (allocation failed)'
+         return
+      end if
+      deallocate (probe)
+      stat = 0
+      errmsg = ''
+   end subroutine memory_check
 
    !> A real with a fixed number of decimals.
    function fixed(x, decimals) result(s)
@@ -287,6 +394,13 @@ contains
       integer, intent(in) :: decimals
       character(len=:), allocatable :: s
       character(len=32) :: buf, fmt
+      if (.not. ieee_is_finite(x)) then
+         s = sci(x)
+         return
+      else if (abs(x) >= 1.0e15_wp) then
+         s = sci(x)    ! f0.d would not fit the buffer
+         return
+      end if
       write (fmt, '(a,i0,a)') '(f0.', decimals, ')'
       write (buf, fmt) x
       s = trim(buf)

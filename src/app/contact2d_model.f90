@@ -3,6 +3,7 @@
 module contact2d_model
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str
+   use contact2d_checks, only: check_positive
    use contact2d_messages, only: messages_t
    use contact2d_deck, only: deck_t, edge_load_cfg_t, edge_id
    use contact2d_mesh, only: mesh_t
@@ -42,6 +43,9 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       integer :: i, nx, ny
+      !> outward normals of the sides bottom, right, top, left
+      real(wp), parameter :: outward(2, 4) = reshape([0.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
+                                                      -1.0_wp, 0.0_wp], [2, 4])
       real(wp) :: dt_scaled
 
       nx = deck%mesh%nx*2**deck%mesh%level
@@ -52,6 +56,13 @@ contains
       if (stat /= 0) return
       call model%stiff%init(model%mesh, model%material, stat, errmsg)
       if (stat /= 0) return
+      ! derived quantities checked before use, naming what they come from (contact2d_checks)
+      stat = 1
+      if (check_positive(deck%path//': smallest lumped nodal mass (material:density, mesh:lx, ly, nx, ny, level)', &
+                         minval(model%stiff%mass), errmsg)) return
+      if (check_positive(deck%path//': largest element frequency squared (material:young, density, mesh size)', &
+                         model%stiff%omega2_element, errmsg)) return
+      stat = 0
       model%body_mass = sum(model%stiff%mass)
       dt_scaled = 0
       if (deck%solver%mass_scaling > 0) then
@@ -84,6 +95,10 @@ contains
          model%dt_critical = 2/sqrt(model%stiff%omega2_element + &
                                     maxval(model%contact%penalty_stiffness*model%contact%weight/model%contact%mass))
       end if
+      stat = 1
+      if (check_positive(deck%path//': dt_critical (from material:young, density and the mesh size)', &
+                         model%dt_critical, errmsg)) return
+      stat = 0
       if (deck%solver%dt > 0) then
          model%dt = deck%solver%dt
       else
@@ -119,6 +134,13 @@ contains
                                     c%friction, c%threshold, c%threshold_abscissa(1:c%npoints), &
                                     c%threshold_values(1:c%npoints), c%tresca_scope, c%method, &
                                     c%penalty_stiffness, model%warnings, stat, errmsg)
+            ! the obstacle normal nu points from the obstacle into the body, so against the
+            ! candidate side's outward normal; pointing away, no node can ever touch: warn
+            if (stat == 0 .and. dot_product(c%obstacle_normal, outward(:, edge_id(c%edge))) > 0) then
+               call model%warnings%add('contact:obstacle_normal = ('//str(c%obstacle_normal(1))//', '// &
+                  str(c%obstacle_normal(2))//") points away from the body at edge '"//trim(c%edge)// &
+                  "' (it must point from the obstacle into the body): no node can touch the obstacle")
+            end if
          end associate
          if (stat /= 0) errmsg = deck%path//': '//errmsg
       end subroutine build_contact

@@ -20,7 +20,10 @@ contains
 
    !> Run the static engine and write `path`. code: 0 converged; 1 refused before anything was
    !> written (singular stiffness, model not supported); 2 written but not converged or failed.
-   subroutine static_run(deck, model, path, overwrite, clock0, code, errmsg)
+   !> Output safety (issue 9): the driver passes the temporary file as `path`, the sidecar's
+   !> temporary name as `sidecar` and the final name as `target`; `written` tells it whether the
+   !> file was finished (then it is moved into place).
+   subroutine static_run(deck, model, path, overwrite, clock0, code, errmsg, sidecar, target, written)
       type(deck_t), intent(in) :: deck
       type(model_t), intent(inout) :: model
       character(len=*), intent(in) :: path
@@ -28,6 +31,8 @@ contains
       integer(i8), intent(in) :: clock0   !< system_clock at program start
       integer, intent(out) :: code
       character(len=:), allocatable, intent(out) :: errmsg
+      character(len=*), intent(in), optional :: sidecar, target
+      logical, intent(out), optional :: written
       type(static_t) :: st
       type(explicit_t) :: state
       type(output_t) :: out
@@ -39,6 +44,7 @@ contains
       character(len=:), allocatable :: message, status
 
       code = 1
+      if (present(written)) written = .false.
       call supported(deck, stat, errmsg)
       if (stat /= 0) return
       call st%setup(model, stat, errmsg)
@@ -55,7 +61,11 @@ contains
          sci(st%chol%pivot_ratio)//'; '//str(nk)//' increment(s) to t = '//sci(t_end)//' s'
 
       call state%init(model%stiff, model%load, 0.0_wp, damping_none, 0.0_wp, 1)
-      call out%open(path, overwrite, deck, model, stat, errmsg)
+      if (present(sidecar) .and. present(target)) then
+         call out%open(path, overwrite, deck, model, stat, errmsg, sidecar=sidecar, target=target)
+      else
+         call out%open(path, overwrite, deck, model, stat, errmsg)
+      end if
       if (stat /= 0) then
          code = 2
          call st%free()
@@ -157,6 +167,7 @@ contains
          call st%free()
          return
       end if
+      if (present(written)) written = .true.
       call summary()
       call st%free()
       if (converged) then
@@ -165,7 +176,11 @@ contains
       else
          code = 2
          if (len(errmsg) == 0) errmsg = 'static engine: '//status
-         errmsg = errmsg//'; '//path//' holds the last iterate'
+         if (present(target)) then
+            errmsg = errmsg//'; '//target//' holds the last iterate'
+         else
+            errmsg = errmsg//'; '//path//' holds the last iterate'
+         end if
       end if
    contains
       subroutine summary()
@@ -197,7 +212,11 @@ contains
             ' s (assembly + factorisation '//fixed(st%time_factor, 3)//', condensation '// &
             fixed(st%time_condense, 3)//', increments '//fixed(st%time_pdas, 3)//')'
          write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s'
-         write (output_unit, '(a)') ' output              '//path
+         if (present(target)) then
+            write (output_unit, '(a)') ' output              '//target
+         else
+            write (output_unit, '(a)') ' output              '//path
+         end if
          write (output_unit, '(a)') repeat('-', 72)
       end subroutine summary
    end subroutine static_run

@@ -340,7 +340,15 @@ contains
          do i = 1, this%nc
             k = this%node(i)
             lim = this%limit(i)
-            if (this%friction_in_contact_only .and. this%fn(i) <= 0) lim = 0
+            ! tresca_scope = 'contact': friction only where in contact, judged like the status
+            ! (P0: on the node's own dual cell, mu_n,i > 0; SPEC section 3)
+            if (this%friction_in_contact_only) then
+               if (cells) then
+                  if (.not. this%mu(i) > 0) lim = 0
+               else if (.not. this%fn(i) > 0) then
+                  lim = 0
+               end if
+            end if
             trial = this%mass(i)*((unew(1, k) - u(1, k))*tx + (unew(2, k) - u(2, k))*ty)*rc
             this%ft(i) = sign(min(abs(trial), lim), trial)
             this%stuck(i) = abs(trial) < lim
@@ -410,7 +418,8 @@ contains
       end if
       if (.not. touching) then
          status = status_separated
-      else if (.not. this%friction) then
+      else if (.not. this%friction .or. (this%threshold(i) <= 0 .and. this%slides(i))) then
+         ! no friction or a zero threshold s_i = 0: the node slides freely (docs/output.md)
          status = status_slip
       else if (this%limit(i) > 0 .and. abs(this%ft(i)) >= (1 - slip_tol)*this%limit(i)) then
          status = status_slip

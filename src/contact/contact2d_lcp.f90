@@ -181,14 +181,19 @@ contains
          this%factorizations = this%factorizations + 1
       end if
       if (this%na > 0) then
-         this%rhs(1:this%na) = b(this%idx(1:this%na))
+         ! explicit loops: a vector subscript would make a heap temporary in the step loop
+         do p = 1, this%na
+            this%rhs(p) = b(this%idx(p))
+         end do
          call dpbtrs('U', this%na, this%kd, 1, this%fab, this%kd + 1, this%rhs, this%n, info)
          if (info /= 0) then
             stat = 1
             errmsg = 'P0 contact LCP: LAPACK dpbtrs failed (info = '//str(info)//')'
             return
          end if
-         mu(this%idx(1:this%na)) = this%rhs(1:this%na)
+         do p = 1, this%na
+            mu(this%idx(p)) = this%rhs(p)
+         end do
       end if
       call this%matvec(mu, this%w)
       this%w = this%w - b

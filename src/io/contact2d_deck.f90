@@ -6,11 +6,21 @@
 !> Groups: &mesh, &material, &solver, &output, &contact and &initial once each, &dirichlet and &traction as
 !> many times as needed. Each group is read from its own block with iostat/iomsg; a failure
 !> names the deck line of the group and the runtime's message.
+!>
+!> Nothing is misread (issue 9): lines are read whole and refused beyond line_len, '&end' and
+!> nested groups are refused, only regular files up to max_deck_bytes are read. To add a
+!> variable: a string is read into a local of length line_len and checked with too_long()
+!> against its field's length; a real is added to any_not_finite() in validate() (it uses
+!> check_finite of contact2d_checks, which must run before any comparison of the value), then
+!> range-checked; derived quantities are checked in the model with check_positive.
 module contact2d_deck
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str, lower, join
    use contact2d_material, only: material_t, material_init
+   use contact2d_checks, only: check_finite, check_range, max_magnitude
+   use contact2d_sys, only: sys_path_info, sys_strerror, kind_missing, kind_file, kind_dangling, kind_names
+   use, intrinsic :: iso_c_binding, only: c_long_long
    implicit none
    private
    public :: deck_t, deck_read, mesh_cfg_t, material_cfg_t, edge_load_cfg_t, contact_cfg_t
@@ -22,8 +32,10 @@ module contact2d_deck
    integer, parameter :: unset_int = -huge(1)
    !> Most stages of a load curve and most points of a threshold profile.
    integer, parameter :: max_stages = 16, max_points = 64
-   !> Longest accepted deck line.
+   !> Longest accepted deck line (longer lines are refused, never cut).
    integer, parameter :: line_len = 1024
+   !> Largest accepted deck file [bytes].
+   integer, parameter :: max_deck_bytes = 1048576
 
    character(len=9), parameter :: group_names(8) = [character(len=9) :: &
                                                     'mesh', 'material', 'dirichlet', 'traction', 'contact', 'solver', 'output', &
@@ -198,46 +210,72 @@ contains
 
    ! ---- reading ----------------------------------------------------------------------------
 
+   !> The deck's lines, read in full: a line longer than line_len is refused with its number
+   !> (never cut). Only a regular file of at most max_deck_bytes is read (a directory, device,
+   !> FIFO or oversized file is refused before reading).
    subroutine read_lines(path, lines, text, stat, errmsg)
       character(len=*), intent(in) :: path
       character(len=line_len), allocatable, intent(out) :: lines(:)
       character(len=:), allocatable, intent(out) :: text
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      character(len=line_len + 1) :: buf
-      character(len=256) :: msg
+      character(len=256) :: msg, chunk
       character(len=line_len), allocatable :: tmp(:)
-      integer :: unit, n, ios
-      logical :: exists
+      character(len=:), allocatable :: buf, line
+      integer :: unit, n, ios, kind, err, sz, pos, total, last_nonblank
+      integer(c_long_long) :: dev, ino, bytes
 
-      inquire (file=path, exist=exists)
-      if (.not. exists) then
-         stat = 1
+      stat = 1
+      call sys_path_info(path, kind, dev, ino, bytes, err)
+      if (err /= 0) then
+         errmsg = "cannot open deck '"//path//"': "//sys_strerror(err)
+         return
+      else if (kind == kind_missing) then
          errmsg = "cannot open deck '"//path//"': no such file"
+         return
+      else if (kind == kind_dangling) then
+         errmsg = "cannot open deck '"//path//"': dangling symbolic link"
+         return
+      else if (kind /= kind_file) then
+         errmsg = "deck '"//path//"' is a "//trim(kind_names(kind))//', not a regular file'
+         return
+      else if (bytes > max_deck_bytes) then
+         errmsg = "deck '"//path//"' has "//str(int(bytes))//' bytes, more than a deck may have ('// &
+                  str(max_deck_bytes)//')'
          return
       end if
       open (newunit=unit, file=path, status='old', action='read', iostat=ios, iomsg=msg)
       if (ios /= 0) then
-         stat = 1
          errmsg = "cannot open deck '"//path//"': "//trim(msg)
          return
       end if
       allocate (lines(64))
-      text = ''
+      allocate (character(len=int(bytes) + 1) :: buf)
+      pos = 0
       n = 0
       do
-         read (unit, '(a)', iostat=ios, iomsg=msg) buf
-         if (is_iostat_end(ios)) exit
-         if (ios /= 0) then
-            stat = 1
+         ! one whole record, in chunks (non-advancing), so that nothing is cut; beyond line_len
+         ! only the position of the last non-blank is kept (for the message)
+         line = ''
+         total = 0
+         last_nonblank = 0
+         do
+            read (unit, '(a)', advance='no', size=sz, iostat=ios, iomsg=msg) chunk
+            if (total < line_len) line = line//chunk(1:min(sz, line_len - total))
+            if (len_trim(chunk(1:sz)) > 0) last_nonblank = total + len_trim(chunk(1:sz))
+            total = total + sz
+            if (ios /= 0) exit
+         end do
+         if (is_iostat_end(ios) .and. total == 0) exit
+         if (ios /= 0 .and. .not. is_iostat_eor(ios) .and. .not. is_iostat_end(ios)) then
             errmsg = path//':'//str(n + 1)//': cannot read: '//trim(msg)
             close (unit)
             return
          end if
          n = n + 1
-         if (len_trim(buf) > line_len) then
-            stat = 1
-            errmsg = path//':'//str(n)//': line longer than '//str(line_len)//' characters'
+         if (last_nonblank > line_len) then
+            errmsg = path//':'//str(n)//': line has '//str(last_nonblank)//' characters, more than '// &
+                     str(line_len)//'; split it (a namelist value list may span lines)'
             close (unit)
             return
          end if
@@ -246,11 +284,17 @@ contains
             tmp(1:size(lines)) = lines
             call move_alloc(tmp, lines)
          end if
-         lines(n) = buf(1:line_len)
-         text = text//trim(buf)//new_line('a')
+         lines(n) = line
+         sz = len_trim(line)
+         if (pos + sz + 1 > len(buf)) buf = buf//repeat(' ', sz + 1)
+         buf(pos + 1:pos + sz) = line(1:sz)
+         buf(pos + sz + 1:pos + sz + 1) = new_line('a')
+         pos = pos + sz + 1
+         if (is_iostat_end(ios)) exit
       end do
       close (unit)
       lines = lines(1:n)
+      text = buf(1:pos)
       stat = 0
       errmsg = ''
    end subroutine read_lines
@@ -312,6 +356,17 @@ contains
                quote = c
             else if (c == '!') then
                exit
+            else if (c == '&') then
+               ! '&end' (a common extension) or a new group before '/': refused, never misread
+               stat = 1
+               if (lower(lines(i)(j:min(j + 3, len(lines(i))))) == '&end') then
+                  errmsg = str(i)//": '&end' does not close a group here; close &"//trim(tmp(n)%name)// &
+                           " with '/'"
+               else
+                  errmsg = str(i)//": '&' inside group &"//trim(tmp(n)%name)//' (opened at line '// &
+                           str(tmp(n)%first)//") before its closing '/'"
+               end if
+               return
             else if (c == '/') then
                inside = .false.
                tmp(n)%last = i
@@ -522,6 +577,21 @@ contains
       end do
    end function pick
 
+   !> A string value longer than its variable is refused, never cut (read it into a local of
+   !> length line_len, then call this with the variable's length); true if too long.
+   logical function too_long(where, name, value, maxlen, stat, errmsg)
+      character(len=*), intent(in) :: where, name, value
+      integer, intent(in) :: maxlen
+      integer, intent(inout) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      too_long = len_trim(value) > maxlen
+      if (too_long) then
+         stat = 1
+         errmsg = where//name//" = '"//trim(value)//"' is longer than "//str(maxlen)// &
+                  ' characters, so it is no valid choice'
+      end if
+   end function too_long
+
    !> Turn a failed namelist read into a message; true if it failed.
    logical function read_failed(ios, msg, where, stat, errmsg)
       integer, intent(in) :: ios
@@ -589,8 +659,7 @@ contains
       type(edge_load_cfg_t), intent(inout) :: cfg
       integer, intent(inout) :: stat
       character(len=:), allocatable, intent(inout) :: errmsg
-      character(len=16) :: edge
-      character(len=8) :: component
+      character(len=line_len) :: edge, component   ! long enough to see over-long values
       real(wp) :: xmin, xmax, ymin, ymax, values(max_stages), times(max_stages)
       integer :: ios, i
       character(len=256) :: msg
@@ -613,6 +682,8 @@ contains
          end if
          if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
+      if (too_long(where, 'edge', edge, len(cfg%edge), stat, errmsg)) return
+      if (too_long(where, 'component', component, len(cfg%component), stat, errmsg)) return
       cfg%edge = edge; cfg%component = component
       cfg%xmin = xmin; cfg%xmax = xmax; cfg%ymin = ymin; cfg%ymax = ymax
       cfg%values = values; cfg%times = times
@@ -625,9 +696,7 @@ contains
       type(contact_cfg_t), intent(inout) :: cfg
       integer, intent(inout) :: stat
       character(len=:), allocatable, intent(inout) :: errmsg
-      character(len=16) :: edge, friction
-      character(len=4) :: direction, multiplier
-      character(len=8) :: tresca_scope, method
+      character(len=line_len) :: edge, friction, direction, multiplier, tresca_scope, method
       real(wp) :: xmin, xmax, ymin, ymax, obstacle_point(2), obstacle_normal(2), origin(2)
       real(wp) :: threshold, threshold_abscissa(max_points), threshold_values(max_points)
       real(wp) :: penalty_stiffness
@@ -649,6 +718,12 @@ contains
          read (ovr(i)%assignment, nml=contact, iostat=ios, iomsg=msg)
          if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
+      if (too_long(where, 'edge', edge, len(cfg%edge), stat, errmsg)) return
+      if (too_long(where, 'friction', friction, len(cfg%friction), stat, errmsg)) return
+      if (too_long(where, 'direction', direction, len(cfg%direction), stat, errmsg)) return
+      if (too_long(where, 'multiplier', multiplier, len(cfg%multiplier), stat, errmsg)) return
+      if (too_long(where, 'tresca_scope', tresca_scope, len(cfg%tresca_scope), stat, errmsg)) return
+      if (too_long(where, 'method', method, len(cfg%method), stat, errmsg)) return
       cfg%edge = edge; cfg%xmin = xmin; cfg%xmax = xmax; cfg%ymin = ymin; cfg%ymax = ymax
       cfg%obstacle_point = obstacle_point; cfg%obstacle_normal = obstacle_normal
       cfg%origin = origin; cfg%direction = direction; cfg%multiplier = multiplier
@@ -668,7 +743,7 @@ contains
       real(wp) :: dt, dt_factor, t_ramp, t_end, alpha, tol_residual, tol_kinetic, mass_scaling
       logical :: allow_unstable
       integer :: max_steps, damping_interval, check_interval, power_iterations, ios, i
-      character(len=8) :: damping, dt_limit, method, convergence_test
+      character(len=line_len) :: damping, dt_limit, method, convergence_test
       integer :: static_increments
       logical :: compare_static
       character(len=256) :: msg
@@ -691,6 +766,8 @@ contains
          read (ovr(i)%assignment, nml=solver, iostat=ios, iomsg=msg)
          if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
+      if (too_long(where, 'damping', damping, len(cfg%damping), stat, errmsg)) return
+      if (too_long(where, 'method', method, len(cfg%method), stat, errmsg)) return
       cfg%dt = dt; cfg%dt_factor = dt_factor; cfg%allow_unstable = allow_unstable
       cfg%t_ramp = t_ramp; cfg%t_end = t_end; cfg%max_steps = max_steps
       cfg%damping = damping; cfg%alpha = alpha; cfg%damping_interval = damping_interval
@@ -763,6 +840,8 @@ contains
       integer :: i
 
       stat = 1
+      ! every real first: finite and of sane magnitude, before any comparison (contact2d_checks)
+      if (any_not_finite()) return
       associate (m => deck%mesh)
          if (m%lx == unset) then; errmsg = 'mesh:lx is required (width, mm)'; return; end if
          if (m%ly == unset) then; errmsg = 'mesh:ly is required (height, mm)'; return; end if
@@ -772,6 +851,8 @@ contains
          if (.not. m%ly > 0) then; errmsg = 'mesh:ly = '//str(m%ly)//' must be > 0'; return; end if
          if (m%nx < 1) then; errmsg = 'mesh:nx = '//str(m%nx)//' must be >= 1'; return; end if
          if (m%ny < 1) then; errmsg = 'mesh:ny = '//str(m%ny)//' must be >= 1'; return; end if
+         if (check_range('mesh:lx', m%lx, 1.0e-30_wp, max_magnitude, errmsg)) return
+         if (check_range('mesh:ly', m%ly, 1.0e-30_wp, max_magnitude, errmsg)) return
          if (m%level < 0 .or. m%level > 12) then
             errmsg = 'mesh:level = '//str(m%level)//' must be in 0..12'
             return
@@ -790,6 +871,8 @@ contains
          call material_init(mat, m%young, m%poisson, m%density, stat, errmsg)
          if (stat /= 0) return
          stat = 1
+         if (check_range('material:young', m%young, 1.0e-30_wp, max_magnitude, errmsg)) return
+         if (check_range('material:density', m%density, 1.0e-30_wp, max_magnitude, errmsg)) return
       end associate
 
       associate (s => deck%solver)
@@ -1058,6 +1141,62 @@ contains
       stat = 0
       errmsg = ''
    contains
+      !> check_finite on every real of the deck (NaN, Inf, |x| > max_magnitude), naming it.
+      logical function any_not_finite() result(bad)
+         integer :: j
+         bad = .true.
+         associate (m => deck%mesh, a => deck%material, c => deck%contact, s => deck%solver)
+            if (check_finite('mesh:lx', m%lx, errmsg)) return
+            if (check_finite('mesh:ly', m%ly, errmsg)) return
+            if (check_finite('material:young', a%young, errmsg)) return
+            if (check_finite('material:poisson', a%poisson, errmsg)) return
+            if (check_finite('material:density', a%density, errmsg)) return
+            do j = 1, size(deck%dirichlet)
+               if (edge_not_finite(deck%dirichlet(j), 'dirichlet#'//str(j))) return
+            end do
+            do j = 1, size(deck%traction)
+               if (edge_not_finite(deck%traction(j), 'traction#'//str(j))) return
+            end do
+            if (c%present) then
+               if (check_finite('contact:xmin', c%xmin, errmsg)) return
+               if (check_finite('contact:xmax', c%xmax, errmsg)) return
+               if (check_finite('contact:ymin', c%ymin, errmsg)) return
+               if (check_finite('contact:ymax', c%ymax, errmsg)) return
+               if (check_finite('contact:obstacle_point', c%obstacle_point, errmsg)) return
+               if (check_finite('contact:obstacle_normal', c%obstacle_normal, errmsg)) return
+               if (check_finite('contact:origin', c%origin, errmsg)) return
+               if (check_finite('contact:threshold', c%threshold, errmsg)) return
+               if (check_finite('contact:threshold_abscissa', c%threshold_abscissa, errmsg)) return
+               if (check_finite('contact:threshold_values', c%threshold_values, errmsg)) return
+               if (check_finite('contact:penalty_stiffness', c%penalty_stiffness, errmsg)) return
+            end if
+            if (check_finite('solver:dt', s%dt, errmsg)) return
+            if (check_finite('solver:dt_factor', s%dt_factor, errmsg)) return
+            if (check_finite('solver:t_ramp', s%t_ramp, errmsg)) return
+            if (check_finite('solver:t_end', s%t_end, errmsg)) return
+            if (check_finite('solver:alpha', s%alpha, errmsg)) return
+            if (check_finite('solver:tol_residual', s%tol_residual, errmsg)) return
+            if (check_finite('solver:tol_kinetic', s%tol_kinetic, errmsg)) return
+            if (check_finite('solver:mass_scaling', s%mass_scaling, errmsg)) return
+            if (check_finite('initial:velocity', deck%initial%velocity, errmsg)) return
+            if (check_finite('output:snapshot_times', deck%output%snapshot_times, errmsg)) return
+         end associate
+         bad = .false.
+      end function any_not_finite
+
+      logical function edge_not_finite(cfg, group) result(bad)
+         type(edge_load_cfg_t), intent(in) :: cfg
+         character(len=*), intent(in) :: group
+         bad = .true.
+         if (check_finite(group//':xmin', cfg%xmin, errmsg)) return
+         if (check_finite(group//':xmax', cfg%xmax, errmsg)) return
+         if (check_finite(group//':ymin', cfg%ymin, errmsg)) return
+         if (check_finite(group//':ymax', cfg%ymax, errmsg)) return
+         if (check_finite(group//':values', cfg%values, errmsg)) return
+         if (check_finite(group//':times', cfg%times, errmsg)) return
+         bad = .false.
+      end function edge_not_finite
+
       subroutine validate_edge_load(cfg, group, k)
          type(edge_load_cfg_t), intent(inout) :: cfg
          character(len=*), intent(in) :: group

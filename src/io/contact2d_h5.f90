@@ -4,6 +4,7 @@
 !> Every hdferr is checked. The first failure is kept in the handle (stat, errmsg) and later
 !> calls on that handle do nothing, so a caller writes a batch and checks `ok()` once.
 module contact2d_h5
+   use contact2d_sys, only: sys_h5_reason
    use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char
    use contact2d_kinds, only: wp
    use hdf5, only: hid_t, hsize_t, h5open_f, h5fcreate_f, h5fclose_f, h5fflush_f, &
@@ -57,9 +58,13 @@ contains
       class(h5file_t), intent(inout) :: this
       integer, intent(in) :: hdferr
       character(len=*), intent(in) :: what
+      character(len=:), allocatable :: reason
       if (hdferr >= 0 .or. this%stat /= 0) return
       this%stat = 1
+      ! the system's reason (e.g. 'No space left on device') from HDF5's error stack
+      reason = sys_h5_reason()
       this%errmsg = 'HDF5 error in '//what//' ('//this%path//')'
+      if (len(reason) > 0) this%errmsg = this%errmsg//': '//reason
    end subroutine h5file_fail
 
    !> True while no HDF5 call has failed on this file.

@@ -12,6 +12,7 @@ module contact2d_output
    use contact2d_explicit, only: explicit_t
    use contact2d_q1, only: q1_stress_average
    use contact2d_strings, only: str
+   use contact2d_outpath, only: sidecar_name
    use hdf5, only: hid_t
    implicit none
    private
@@ -39,6 +40,8 @@ module contact2d_output
       integer :: nbuf = 0
       integer(i8) :: last_flush_clock = 0
       logical :: xdmf = .true.
+      character(len=:), allocatable :: xmf_path   !< where the sidecar is written
+      character(len=:), allocatable :: h5_name    !< the HDF5 file name the sidecar refers to
    contains
       procedure :: open => output_open
       procedure :: sample => output_sample
@@ -49,8 +52,10 @@ module contact2d_output
 
 contains
 
-   !> Create the file and write what is known before the first step.
-   subroutine output_open(this, path, overwrite, deck, model, stat, errmsg)
+   !> Create the file and write what is known before the first step. The sidecar goes to
+   !> `sidecar` (default <path stem>.xmf) and refers to the HDF5 file as `target` (default path):
+   !> a run writes temporary files and renames them at the end (contact2d_outpath).
+   subroutine output_open(this, path, overwrite, deck, model, stat, errmsg, sidecar, target)
       class(output_t), intent(inout) :: this
       character(len=*), intent(in) :: path
       logical, intent(in) :: overwrite
@@ -58,10 +63,15 @@ contains
       type(model_t), intent(in) :: model
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
+      character(len=*), intent(in), optional :: sidecar, target
       integer(hid_t) :: root, g
       integer :: k
 
       this%xdmf = deck%output%xdmf
+      this%xmf_path = sidecar_name(path)
+      if (present(sidecar)) this%xmf_path = sidecar
+      this%h5_name = path
+      if (present(target)) this%h5_name = target
       call this%file%create(path, overwrite)
       root = this%file%id
       call this%file%attr(root, 'program', program_name)
@@ -228,7 +238,7 @@ contains
          errmsg = this%file%errmsg
          return
       end if
-      if (this%xdmf) call write_xdmf(this%file%path, model, stat, errmsg)
+      if (this%xdmf) call write_xdmf(this%xmf_path, this%h5_name, model, stat, errmsg)
    end subroutine output_finish
 
    !> /final/contact: nodal forces, multiplier fields and status (SPEC section 8).
@@ -253,22 +263,16 @@ contains
    end subroutine write_final_contact
 
    !> <output>.xmf next to the HDF5 file: mesh, final displacement, velocity and stress.
-   subroutine write_xdmf(h5path, model, stat, errmsg)
-      character(len=*), intent(in) :: h5path
+   subroutine write_xdmf(xmf, h5path, model, stat, errmsg)
+      character(len=*), intent(in) :: xmf, h5path
       type(model_t), intent(in) :: model
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      character(len=:), allocatable :: xmf, base, nn, ne
+      character(len=:), allocatable :: base, nn, ne
       character(len=256) :: msg
-      integer :: unit, dot, slash
+      integer :: unit, slash
 
-      dot = index(h5path, '.', back=.true.)
       slash = index(h5path, '/', back=.true.)
-      if (dot > slash + 1) then
-         xmf = h5path(1:dot - 1)//'.xmf'
-      else
-         xmf = h5path//'.xmf'
-      end if
       base = h5path(slash + 1:)
       nn = str(model%mesh%nnode)
       ne = str(model%mesh%nel)
@@ -301,9 +305,14 @@ contains
       write (unit, '(a)') '  </Grid>'
       write (unit, '(a)') ' </Domain>'
       write (unit, '(a)') '</Xdmf>'
-      close (unit)
-      stat = 0
+      flush (unit, iostat=stat, iomsg=msg)
+      if (stat == 0) then
+         close (unit, iostat=stat, iomsg=msg)
+      else
+         close (unit)
+      end if
       errmsg = ''
+      if (stat /= 0) errmsg = 'cannot write '//xmf//': '//trim(msg)
    contains
       subroutine vector(name, path)
          character(len=*), intent(in) :: name, path

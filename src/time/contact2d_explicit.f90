@@ -14,6 +14,7 @@ module contact2d_explicit
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    use contact2d_loading, only: loading_t
    use contact2d_contact, only: contact_t
+   use contact2d_sys, only: sys_signal_pending
    use contact2d_sweep, only: sweep_stencils, sweep_parts, sweep_step
    implicit none
    private
@@ -139,7 +140,9 @@ contains
       end if
    end subroutine explicit_init
 
-   !> Run up to nsteps steps; stops early (blown_up = .true.) if the energy runs away.
+   !> Run up to nsteps steps; stops early (blown_up = .true.) if the energy runs away, after a
+   !> failed contact solve (contact%stat /= 0) and when SIGINT/SIGTERM arrived (polled once per
+   !> step: a read of a flag, no I/O).
    subroutine explicit_advance(this, stiff, load, contact, nsteps)
       class(explicit_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
@@ -226,6 +229,7 @@ contains
             call guard_check(this)
             if (this%growing) exit
          end if
+         if (contact%stat /= 0 .or. sys_signal_pending() /= 0) return
       end do
       ! on return the state is complete: v^(n+1/2) and the energies of the last step
       if (this%pending) call corrector(this, dt)
@@ -421,10 +425,15 @@ contains
    end subroutine rayleigh_blocks
 
    !> Out-of-balance force on the free dofs at t_n (contact forces included), relative to the
-   !> largest of the reactions, the loads and the contact forces (SPEC section 5).
-   real(wp) function explicit_residual(this, load) result(rel)
+   !> largest of the reactions, the loads and the contact forces (SPEC section 5), or to `floor`
+   !> when that is larger: the caller passes the largest scale reached during the run, so a
+   !> stress-free end state (load removed) still converges (docs/output.md). scale_out: this
+   !> step's scale [N].
+   real(wp) function explicit_residual(this, load, floor, scale_out) result(rel)
       class(explicit_t), intent(in) :: this
       type(loading_t), intent(in) :: load
+      real(wp), intent(in), optional :: floor
+      real(wp), intent(out), optional :: scale_out
       real(wp) :: rfree, scale, r
       integer :: i, j
       rfree = 0
@@ -440,6 +449,8 @@ contains
          end do
       end do
       !$omp end parallel do
+      if (present(scale_out)) scale_out = scale
+      if (present(floor)) scale = max(scale, floor)
       if (scale > 0) then
          rel = rfree/scale
       else

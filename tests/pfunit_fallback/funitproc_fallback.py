@@ -20,10 +20,11 @@ reported as "file.pf:LINE: error: ...":
                         funitproc does:  call assertX(<args>, &
                           location=SourceLocation('file.pf', LINE))
                           if (anyExceptions()) return
-A directive may continue over several lines with a trailing '&' (an optional
-leading '&' on the next line is dropped, as in pFUnit >= 4.16); comment or
-blank lines inside a continued directive, and any text after the closing
-parenthesis (including a trailing '! comment'), are errors.  LINE is the line
+A directive must fit on one line: a trailing '&' is an error, because pFUnit
+4.14 rejects '&'-continued @-directives ("Invalid character in name") and the
+two paths must accept the same files (compute long arguments into local
+variables first).  Any text after the closing parenthesis (including a
+trailing '! comment') is an error.  LINE is the line
 holding the '@'.  The module keeps a 1:1 line mapping with the .pf plus
 `#line` markers, so compiler diagnostics point into the .pf file.
 
@@ -82,22 +83,13 @@ def split_top_level(text):
 
 
 def join_directive(path, lines, start):
-    """Join the directive at lines[start] with its '&' continuation lines.
-    Returns (text with BREAK at each physical line break, index after it)."""
-    parts, i, seg = [], start, lines[start].strip()
-    while True:
-        seg = seg.rstrip()
-        if not seg.endswith('&'):
-            parts.append(seg)
-            return BREAK.join(parts), i + 1
-        parts.append(seg[:-1])
-        i += 1
-        if i >= len(lines):
-            error(path, start + 1, 'directive continued with "&" past the end of the file')
-        nxt = lines[i].strip()
-        if not nxt or nxt.startswith('!'):
-            error(path, i + 1, 'blank or comment line inside a continued directive is not supported')
-        seg = nxt[1:] if nxt.startswith('&') else nxt
+    """The directive at lines[start]; a trailing '&' (continuation) is an error, as in
+    pFUnit 4.14.  Returns (text, index after it)."""
+    seg = lines[start].strip()
+    if seg.rstrip().endswith('&'):
+        error(path, start + 1, '"&"-continued @-directive: pFUnit 4.14 rejects it (Invalid '
+              'character in name); put the directive on one line')
+    return seg.rstrip(), start + 1
 
 
 def translate(path, lines):

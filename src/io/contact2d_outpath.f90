@@ -1,0 +1,224 @@
+!> Output safety (docs/output.md, "Output safety"): where a run writes, and when its files take
+!> their names.
+!>
+!> - The output OUT.h5 (and its sidecar OUT.xmf) are checked before any set-up: not the deck
+!>   (same device and inode, so also through links), not a directory, device, FIFO or dangling
+!>   link, a folder that exists and can be written, names the system accepts; an existing file
+!>   needs --force. Each refusal is one line with the system's reason where there is one.
+!> - A run writes OUT.h5.<pid>.partial (and OUT.xmf.<pid>.partial) beside the target and moves
+!>   them into place only when complete, at every end (converged, not converged, blow-up,
+!>   contact failure, interrupted). Without --force the move never replaces a file (link +
+!>   unlink, atomic); with --force it is one rename(). An existing result is therefore intact
+!>   until the new one is complete. A run killed (kill -9) or stopped by a write error leaves
+!>   OUT.h5.<pid>.partial, readable up to its last flush.
+!> - The lock .OUT.h5.lock (flock, beside the target) is held from before the file is created
+!>   until it is in place: a second run aimed at the same output refuses with one line.
+module contact2d_outpath
+   use, intrinsic :: iso_c_binding, only: c_long_long
+   use contact2d_strings, only: str
+   use contact2d_sys, only: sys_path_info, sys_strerror, sys_dir_writable, sys_lock, sys_unlock, &
+                            sys_publish, sys_remove, sys_getpid, kind_missing, kind_file, kind_directory, &
+                            kind_dangling, kind_names
+   implicit none
+   private
+   public :: outpath_t, sidecar_name
+
+   !> Names of one run's output files and the state of its lock.
+   type :: outpath_t
+      character(len=:), allocatable :: target       !< OUT.h5 as given
+      character(len=:), allocatable :: partial      !< OUT.h5.<pid>.partial
+      character(len=:), allocatable :: xmf          !< OUT.xmf ('' without sidecar)
+      character(len=:), allocatable :: xmf_partial  !< OUT.xmf.<pid>.partial
+      character(len=:), allocatable :: lock         !< .OUT.h5.lock in the same folder
+      logical :: force = .false.
+      integer :: fd = -1                            !< lock descriptor (-1: not locked)
+   contains
+      procedure :: check => outpath_check
+      procedure :: acquire => outpath_acquire
+      procedure :: publish => outpath_publish
+      procedure :: abandon => outpath_abandon
+   end type outpath_t
+
+contains
+
+   !> The XDMF sidecar of an HDF5 path: the extension replaced by .xmf (or .xmf appended).
+   function sidecar_name(h5path) result(xmf)
+      character(len=*), intent(in) :: h5path
+      character(len=:), allocatable :: xmf
+      integer :: dot, slash
+      dot = index(h5path, '.', back=.true.)
+      slash = index(h5path, '/', back=.true.)
+      if (dot > slash + 1) then
+         xmf = h5path(1:dot - 1)//'.xmf'
+      else
+         xmf = h5path//'.xmf'
+      end if
+   end function sidecar_name
+
+   !> Check the output (and sidecar) names before any set-up. stat = 1 with one line on refusal.
+   subroutine outpath_check(this, target, deck_path, force, sidecar, stat, errmsg)
+      class(outpath_t), intent(inout) :: this
+      character(len=*), intent(in) :: target, deck_path
+      logical, intent(in) :: force, sidecar
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer(c_long_long) :: ddev, dino, dsize
+      integer :: dkind, err, slash
+      character(len=:), allocatable :: dir, base, pid
+
+      stat = 1
+      this%force = force
+      this%target = target
+      pid = str(sys_getpid())
+      this%partial = target//'.'//pid//'.partial'
+      slash = index(target, '/', back=.true.)
+      dir = target(1:slash)
+      base = target(slash + 1:)
+      this%lock = dir//'.'//base//'.lock'
+      this%xmf = ''
+      this%xmf_partial = ''
+      if (len(target) == 0) then
+         errmsg = 'the output file name is empty'
+         return
+      end if
+      if (len(base) == 0) then
+         errmsg = "output '"//target//"' names a directory, not a file"
+         return
+      end if
+      call sys_path_info(deck_path, dkind, ddev, dino, dsize, err)
+      if (err /= 0) dkind = kind_missing
+      call check_one(target, 'output', errmsg)
+      if (len(errmsg) > 0) return
+      if (sidecar) then
+         this%xmf = sidecar_name(target)
+         this%xmf_partial = this%xmf//'.'//pid//'.partial'
+         if (this%xmf == target) then
+            errmsg = "output '"//target//"' would be overwritten by its own XDMF sidecar; "// &
+                     "choose a name not ending in .xmf (or set output:xdmf = .false.)"
+            return
+         end if
+         call check_one(this%xmf, 'XDMF sidecar', errmsg)
+         if (len(errmsg) > 0) return
+      end if
+      ! the folder must exist and take new files (the system's reason otherwise)
+      if (len(dir) == 0) dir = './'
+      err = sys_dir_writable(dir)
+      if (err /= 0) then
+         errmsg = "cannot write output '"//target//"': folder '"//dir//"': "//sys_strerror(err)
+         return
+      end if
+      ! the temporary and lock names must be valid too (a name near the length limit)
+      call check_name(this%partial, errmsg)
+      if (len(errmsg) > 0) return
+      call check_name(this%lock, errmsg)
+      if (len(errmsg) > 0) return
+      if (sidecar) then
+         call check_name(this%xmf_partial, errmsg)
+         if (len(errmsg) > 0) return
+      end if
+      stat = 0
+      errmsg = ''
+   contains
+      subroutine check_one(path, what, msg)
+         character(len=*), intent(in) :: path, what
+         character(len=:), allocatable, intent(out) :: msg
+         integer(c_long_long) :: dev, ino, size
+         integer :: kind, e
+         msg = ''
+         call sys_path_info(path, kind, dev, ino, size, e)
+         if (e /= 0) then
+            msg = 'cannot write '//what//" '"//path//"': "//sys_strerror(e)
+         else if (kind == kind_dangling) then
+            msg = what//" '"//path//"' is a dangling symbolic link: "//sys_strerror(2)
+         else if (kind == kind_directory) then
+            msg = what//" '"//path//"' is a directory: "//sys_strerror(21)
+         else if (kind /= kind_missing .and. kind /= kind_file) then
+            msg = what//" '"//path//"' is a "//trim(kind_names(kind))//', not a regular file'
+         else if (kind == kind_file .and. dkind == kind_file .and. dev == ddev .and. ino == dino) then
+            msg = what//" '"//path//"' is the deck '"//deck_path//"' itself; choose another name with -o"
+         else if (kind == kind_file .and. .not. force) then
+            msg = what//" '"//path//"' exists; use --force to overwrite it or -o to choose another"
+         end if
+      end subroutine check_one
+      subroutine check_name(path, msg)
+         character(len=*), intent(in) :: path
+         character(len=:), allocatable, intent(out) :: msg
+         integer(c_long_long) :: dev, ino, size
+         integer :: kind, e
+         msg = ''
+         call sys_path_info(path, kind, dev, ino, size, e)
+         if (e /= 0) msg = "cannot write output '"//target//"': its temporary name '"//path//"': "//sys_strerror(e)
+      end subroutine check_name
+   end subroutine outpath_check
+
+   !> Take the lock; without --force re-check under the lock that the targets are still free.
+   subroutine outpath_acquire(this, stat, errmsg)
+      class(outpath_t), intent(inout) :: this
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer(c_long_long) :: dev, ino, size
+      integer :: err, kind, e
+      stat = 1
+      err = sys_lock(this%lock, this%fd)
+      if (err == 11) then   ! EWOULDBLOCK = EAGAIN
+         this%fd = -1
+         errmsg = "output '"//this%target//"' is being written by another run (lock "//this%lock// &
+                  " held); wait for it or choose another name with -o"
+         return
+      else if (err /= 0) then
+         this%fd = -1
+         errmsg = "cannot lock output '"//this%target//"' ("//this%lock//'): '//sys_strerror(err)
+         return
+      end if
+      if (.not. this%force) then
+         call sys_path_info(this%target, kind, dev, ino, size, e)
+         if (kind /= kind_missing) then
+            call this%abandon(.false.)
+            errmsg = "output file '"//this%target//"' exists; use --force to overwrite it or -o to choose another"
+            return
+         end if
+      end if
+      stat = 0
+      errmsg = ''
+   end subroutine outpath_acquire
+
+   !> Move the complete files into place (sidecar first), then release the lock.
+   subroutine outpath_publish(this, stat, errmsg)
+      class(outpath_t), intent(inout) :: this
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: err
+      stat = 0
+      errmsg = ''
+      if (len(this%xmf) > 0) then
+         err = sys_publish(this%xmf_partial, this%xmf, this%force)
+         if (err /= 0) then
+            stat = 2
+            errmsg = "cannot move '"//this%xmf_partial//"' to '"//this%xmf//"': "//sys_strerror(err)
+         end if
+      end if
+      if (stat == 0) then
+         err = sys_publish(this%partial, this%target, this%force)
+         if (err /= 0) then
+            stat = 2
+            errmsg = "cannot move '"//this%partial//"' to '"//this%target//"': "//sys_strerror(err)// &
+                     '; the complete result stays in '//this%partial
+         end if
+      end if
+      if (this%fd >= 0) call sys_unlock(this%lock, this%fd)
+      this%fd = -1
+   end subroutine outpath_publish
+
+   !> Give up: remove the sidecar's temporary file, the result's one unless keep_partial, and
+   !> release the lock. The target files are not touched.
+   subroutine outpath_abandon(this, keep_partial)
+      class(outpath_t), intent(inout) :: this
+      logical, intent(in) :: keep_partial
+      integer :: err
+      if (.not. allocated(this%partial)) return
+      if (len(this%xmf_partial) > 0) err = sys_remove(this%xmf_partial)
+      if (.not. keep_partial) err = sys_remove(this%partial)
+      if (this%fd >= 0) call sys_unlock(this%lock, this%fd)
+      this%fd = -1
+   end subroutine outpath_abandon
+end module contact2d_outpath

@@ -1,0 +1,172 @@
+!> POSIX services for output safety and interrupts (C in contact2d_sys.c, bound here):
+!> file kinds and identities, the output lock, no-clobber publish, the SIGINT/SIGTERM flag and
+!> the system's reason of the last HDF5 failure. Every routine returns 0 or an errno value;
+!> sys_strerror turns it into the system's text.
+module contact2d_sys
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long_long, c_null_char
+   implicit none
+   private
+   public :: sys_signals_install, sys_signal_pending, sys_strerror, sys_path_info, sys_dir_writable
+   public :: sys_lock, sys_unlock, sys_publish, sys_remove, sys_h5_reason, sys_getpid, sys_exit_now
+   public :: kind_missing, kind_file, kind_directory, kind_device, kind_fifo, kind_socket, &
+             kind_other, kind_dangling, kind_names
+
+   !> What a path is (sys_path_info).
+   integer, parameter :: kind_missing = 0, kind_file = 1, kind_directory = 2, kind_device = 3, &
+                         kind_fifo = 4, kind_socket = 5, kind_other = 6, kind_dangling = 7
+   character(len=24), parameter :: kind_names(0:7) = [character(len=24) :: 'missing', 'regular file', &
+      'directory', 'device', 'FIFO', 'socket', 'special file', 'dangling symbolic link']
+
+   interface
+      integer(c_int) function c2d_signals_install() bind(C, name='c2d_signals_install')
+         import :: c_int
+      end function c2d_signals_install
+      integer(c_int) function c2d_signal_pending() bind(C, name='c2d_signal_pending')
+         import :: c_int
+      end function c2d_signal_pending
+      subroutine c2d_strerror(err, buf, len) bind(C, name='c2d_strerror')
+         import :: c_int, c_char
+         integer(c_int), value :: err, len
+         character(kind=c_char) :: buf(*)
+      end subroutine c2d_strerror
+      integer(c_int) function c2d_path_info(path, kind, dev, ino, size) bind(C, name='c2d_path_info')
+         import :: c_int, c_char, c_long_long
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), intent(out) :: kind
+         integer(c_long_long), intent(out) :: dev, ino, size
+      end function c2d_path_info
+      integer(c_int) function c2d_dir_writable(dir) bind(C, name='c2d_dir_writable')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: dir(*)
+      end function c2d_dir_writable
+      integer(c_int) function c2d_lock(path, fd) bind(C, name='c2d_lock')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), intent(out) :: fd
+      end function c2d_lock
+      subroutine c2d_unlock(path, fd) bind(C, name='c2d_unlock')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         integer(c_int), value :: fd
+      end subroutine c2d_unlock
+      integer(c_int) function c2d_publish(from, to, replace) bind(C, name='c2d_publish')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: from(*), to(*)
+         integer(c_int), value :: replace
+      end function c2d_publish
+      integer(c_int) function c2d_remove(path) bind(C, name='c2d_remove')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+      end function c2d_remove
+      subroutine c2d_h5_reason(buf, len) bind(C, name='c2d_h5_reason')
+         import :: c_int, c_char
+         character(kind=c_char) :: buf(*)
+         integer(c_int), value :: len
+      end subroutine c2d_h5_reason
+      subroutine c2d_exit_now(code) bind(C, name='c2d_exit_now')
+         import :: c_int
+         integer(c_int), value :: code
+      end subroutine c2d_exit_now
+      integer(c_int) function getpid() bind(C, name='getpid')
+         import :: c_int
+      end function getpid
+   end interface
+
+contains
+
+   !> Catch SIGINT and SIGTERM: the run stops at the end of the current step (0 or errno).
+   integer function sys_signals_install() result(err)
+      err = int(c2d_signals_install())
+   end function sys_signals_install
+
+   !> The signal received so far (0: none). Cheap; called once per step.
+   integer function sys_signal_pending() result(sig)
+      sig = int(c2d_signal_pending())
+   end function sys_signal_pending
+
+   !> End the process now with the code, without exit handlers (the caller flushes its units).
+   subroutine sys_exit_now(code)
+      integer, intent(in) :: code
+      call c2d_exit_now(int(code, c_int))
+   end subroutine sys_exit_now
+
+   integer function sys_getpid() result(pid)
+      pid = int(getpid())
+   end function sys_getpid
+
+   !> The system's text for an errno value.
+   function sys_strerror(err) result(text)
+      integer, intent(in) :: err
+      character(len=:), allocatable :: text
+      character(kind=c_char, len=256) :: buf
+      call c2d_strerror(int(err, c_int), buf, int(len(buf), c_int))
+      text = cstring(buf)
+   end function sys_strerror
+
+   !> Kind (kind_* above), identity and size of a path; err /= 0 if stat failed other than ENOENT.
+   subroutine sys_path_info(path, kind, dev, ino, size, err)
+      character(len=*), intent(in) :: path
+      integer, intent(out) :: kind, err
+      integer(c_long_long), intent(out) :: dev, ino, size
+      integer(c_int) :: k
+      err = int(c2d_path_info(path//c_null_char, k, dev, ino, size))
+      kind = int(k)
+   end subroutine sys_path_info
+
+   !> 0 if a file can be created in dir, else the errno.
+   integer function sys_dir_writable(dir) result(err)
+      character(len=*), intent(in) :: dir
+      err = int(c2d_dir_writable(dir//c_null_char))
+   end function sys_dir_writable
+
+   !> Exclusive non-blocking lock on a lock file (created); fd to release it with sys_unlock.
+   integer function sys_lock(path, fd) result(err)
+      character(len=*), intent(in) :: path
+      integer, intent(out) :: fd
+      integer(c_int) :: f
+      f = -1
+      err = int(c2d_lock(path//c_null_char, f))
+      fd = int(f)
+   end function sys_lock
+
+   !> Remove the lock file and release the lock.
+   subroutine sys_unlock(path, fd)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: fd
+      call c2d_unlock(path//c_null_char, int(fd, c_int))
+   end subroutine sys_unlock
+
+   !> Move from -> to; without replace an existing `to` is an error (EEXIST), atomically.
+   integer function sys_publish(from, to, replace) result(err)
+      character(len=*), intent(in) :: from, to
+      logical, intent(in) :: replace
+      err = int(c2d_publish(from//c_null_char, to//c_null_char, merge(1_c_int, 0_c_int, replace)))
+   end function sys_publish
+
+   !> Remove a file (a missing file is no error).
+   integer function sys_remove(path) result(err)
+      character(len=*), intent(in) :: path
+      err = int(c2d_remove(path//c_null_char))
+   end function sys_remove
+
+   !> The system's reason stored in the HDF5 error stack by the last failed call ('' if none).
+   function sys_h5_reason() result(text)
+      character(len=:), allocatable :: text
+      character(kind=c_char, len=256) :: buf
+      buf = ''
+      call c2d_h5_reason(buf, int(len(buf), c_int))
+      text = cstring(buf)
+   end function sys_h5_reason
+
+   function cstring(buf) result(s)
+      character(len=*), intent(in) :: buf
+      character(len=:), allocatable :: s
+      integer :: n
+      n = index(buf, c_null_char)
+      if (n == 0) then
+         s = trim(buf)
+      else
+         s = buf(1:n - 1)
+      end if
+   end function cstring
+end module contact2d_sys

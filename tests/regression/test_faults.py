@@ -1,0 +1,267 @@
+"""Regression 15 (issue 9): faults end cleanly and never lose data.
+
+- SIGINT / SIGTERM mid-run: exit 130 / 143, one line on stderr, OUT.h5 in place with status
+  'interrupted', the history up to the stop, /final and the sidecar; no temporary file or lock left.
+- kill -9 of a --force run over an existing result: the result is byte for byte intact, the
+  killed run's OUT.h5.<pid>.partial is there and opens (what was flushed is readable).
+- Two runs on one output: while one writes, a second --force run is refused with one line and
+  writes nothing; two runs started together leave one valid result.
+- A write that fails (file size limit RLIMIT_FSIZE, the kernel's EFBIG, and a full tmpfs where
+  the machine allows mounting one): exit 2, one line with the system's reason, the existing
+  result intact, the partial file readable.
+- Semantics: a load-unload deck converges (absolute floor), two snapshot times in one step
+  give one snapshot, dt_factor = 1e29 (allowed) blows up with a summary instead of a formatting
+  crash, an obstacle normal pointing away from the body is warned about.
+"""
+import glob
+import hashlib
+import os
+import resource
+import shutil
+import signal
+import subprocess
+import tempfile
+import time
+
+import h5py
+import numpy as np
+
+import c2dtest
+
+LONG = "baillet_sassi_2002_p0.nml"
+# a run that lasts (never converges) but is cheap per step; the test stops it
+LONG_ARGS = ["--set", "mesh:level=2", "--set", "solver:tol_residual=1e-300", "--set", "solver:t_end=1.0",
+             "--set", "output:history_interval=1"]
+UNIAXIAL = "uniaxial_compression.nml"
+ENV = {**os.environ, "OMP_NUM_THREADS": "1"}
+
+
+def sha(path):
+    with open(path, "rb") as fh:
+        return hashlib.sha256(fh.read()).hexdigest()
+
+
+def start(t, folder, deck, args, out="out.h5"):
+    cmd = [t.exe, deck, "-o", out, "-q"] + list(args)
+    print("-- start (cd %s && %s)" % (folder, " ".join(cmd)))
+    return subprocess.Popen(cmd, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=ENV)
+
+
+def wait_for(pattern, timeout=120.0):
+    t0 = time.monotonic()
+    while time.monotonic() - t0 < timeout:
+        found = glob.glob(pattern)
+        if found:
+            return found[0]
+        time.sleep(0.05)
+    return None
+
+
+def finish(proc, timeout=300):
+    out, err = proc.communicate(timeout=timeout)
+    lines = [line for line in err.decode("utf-8", "replace").splitlines() if line.strip()]
+    print("   exit %d; stderr: %s" % (proc.returncode, " | ".join(lines)))
+    return proc.returncode, lines, out.decode("utf-8", "replace")
+
+
+def leftovers(folder):
+    return sorted(n for n in os.listdir(folder) if n.endswith(".partial") or n.endswith(".lock"))
+
+
+def check_interrupt(t, sig, code):
+    name = "sig%d" % sig
+    folder = t.subdir(name)
+    proc = start(t, folder, t.deck(LONG), LONG_ARGS)
+    partial = wait_for(os.path.join(folder, "out.h5.*.partial"))
+    t.require(partial is not None, name + ": " + "the run started writing its partial file")
+    time.sleep(1.0)
+    proc.send_signal(sig)
+    rc, err, _ = finish(proc)
+    t.check_equal(name, "exit code", code, rc)
+    t.check_equal(name, "lines on stderr", 1, len(err))
+    t.check(name, "the line says interrupted", bool(err) and "interrupted by" in err[0], "interrupted by ...",
+            err[0] if err else "")
+    t.check_equal(name, "no temporary or lock file left", [], leftovers(folder))
+    with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+        t.check_equal(name, "status", "interrupted", c2dtest.attr_str(f.attrs["status"]))
+        steps = int(f.attrs["steps"])
+        t.check(name, "stopped mid-run", 0 < steps < 10 ** 6, "0 < steps", steps)
+        hist = f["history/step"][:]
+        t.check_equal(name, "history flushed up to the stop (last sample = steps)", steps, int(hist[-1]))
+        t.check(name, "/final/displacement present and finite", np.isfinite(f["final/displacement"][:]).all(),
+                True, True)
+    t.check(name, "sidecar written", os.path.exists(os.path.join(folder, "out.xmf")), True,
+            os.path.exists(os.path.join(folder, "out.xmf")))
+
+
+def body(t):
+    quick = [t.deck(UNIAXIAL)]
+    # ---- interrupts -------------------------------------------------------------------------
+    check_interrupt(t, signal.SIGINT, 130)
+    check_interrupt(t, signal.SIGTERM, 143)
+
+    # ---- kill -9 of a --force run over an existing result -----------------------------------
+    name = "kill9"
+    folder = t.subdir(name)
+    rc, err, _ = finish(start(t, folder, quick[0], []))
+    t.require(rc == 0, name + ": " + "the first result exists")
+    h_before = sha(os.path.join(folder, "out.h5"))
+    x_before = sha(os.path.join(folder, "out.xmf"))
+    proc = start(t, folder, t.deck(LONG), LONG_ARGS + ["--force"])
+    partial = wait_for(os.path.join(folder, "out.h5.%d.partial" % proc.pid))
+    t.require(partial is not None, name + ": " + "the --force run started writing")
+    time.sleep(2.5)   # past the first timed history flush (2 s)
+    proc.kill()
+    proc.wait()
+    t.check_equal(name, "existing out.h5 unchanged (sha256)", h_before, sha(os.path.join(folder, "out.h5")))
+    t.check_equal(name, "existing out.xmf unchanged (sha256)", x_before, sha(os.path.join(folder, "out.xmf")))
+    t.check(name, "the killed run's partial file is kept", os.path.exists(partial), True, os.path.exists(partial))
+    try:
+        with h5py.File(partial, "r") as f:
+            status = c2dtest.attr_str(f.attrs["status"])
+            ncoord = f["mesh/coordinates"].shape[0]
+            nhist = f["history/time"].shape[0]
+        t.check_equal(name, "partial file status", "running", status)
+        t.check(name, "partial file holds the mesh and flushed history", ncoord > 0 and nhist > 0,
+                "> 0", (ncoord, nhist))
+    except OSError as e:
+        t.check(name, "partial file opens", False, "readable", str(e))
+    # a later run to the same output is not blocked by the dead run (its flock died with it)
+    rc, err, _ = finish(start(t, folder, quick[0], ["--force"]))
+    t.check_equal(name, "a later --force run succeeds", 0, rc)
+
+    # ---- --force onto a result another process holds open ------------------------------------
+    name = "force_while_open"
+    folder = t.subdir(name)
+    rc, err, _ = finish(start(t, folder, quick[0], []))
+    with h5py.File(os.path.join(folder, "out.h5"), "r") as held:
+        u_old = held["final/displacement"][:]
+        rc, err, _ = finish(start(t, folder, quick[0], ["--force", "--set", "dirichlet#3:values=-2e-3"]))
+        t.check_equal(name, "--force run exit code", 0, rc)
+        t.check(name, "the open handle still reads the old, intact file",
+                np.array_equal(held["final/displacement"][:], u_old), True, True)
+    with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+        t.check_close(name, "new result in place: u_y at the top = -2e-3", -2e-3,
+                      f["final/displacement"][:, 1].min(), rtol=1e-8, reason="the prescribed value")
+
+    # ---- two runs aimed at one output -------------------------------------------------------
+    name = "concurrent"
+    folder = t.subdir(name)
+    a = start(t, folder, t.deck(LONG), LONG_ARGS + ["--force"])
+    t.require(wait_for(os.path.join(folder, "out.h5.%d.partial" % a.pid)) is not None, name + ": run A writes")
+    before = sorted(os.listdir(folder))
+    rc, err, _ = finish(start(t, folder, quick[0], ["--force"]))
+    t.check_equal(name, "run B exit code", 1, rc)
+    t.check(name, "run B refused with one line naming the lock", len(err) == 1 and "another run" in err[0],
+            "one line '... being written by another run ...'", err)
+    t.check_equal(name, "run B created nothing", before, sorted(os.listdir(folder)))
+    a.send_signal(signal.SIGINT)
+    rc, err, _ = finish(a)
+    t.check_equal(name, "run A exit code (interrupted)", 130, rc)
+    with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+        t.check_equal(name, "the result is run A's, complete", "interrupted", c2dtest.attr_str(f.attrs["status"]))
+    # started together: one valid result, every run either succeeded or was refused by the lock
+    name = "concurrent_start"
+    folder = t.subdir(name)
+    procs = [start(t, folder, quick[0], ["--force"]) for _ in range(3)]
+    results = [finish(p) for p in procs]
+    ok = all(rc == 0 or (rc == 1 and len(err) == 1 and "another run" in err[0]) for rc, err, _ in results)
+    t.check(name, "each run exit 0, or 1 refused by the lock", ok, True, [r[0] for r in results])
+    with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+        t.check_equal(name, "one valid result", "converged", c2dtest.attr_str(f.attrs["status"]))
+    t.check_equal(name, "no temporary or lock file left", [], leftovers(folder))
+
+    # ---- a write that fails: file size limit (EFBIG) ----------------------------------------
+    name = "write_fails"
+    folder = t.subdir(name)
+    rc, err, _ = finish(start(t, folder, quick[0], []))
+    h_before = sha(os.path.join(folder, "out.h5"))
+    snaps = ",".join("%g" % (k * 2.5e-7) for k in range(1, 17))
+    args = ["--set", "mesh:level=3", "--set", "output:snapshot_times=" + snaps, "--force"]
+
+    def fsize_limit():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)   # write() then fails with EFBIG
+        resource.setrlimit(resource.RLIMIT_FSIZE, (300_000, 300_000))
+
+    cmd = [t.exe, quick[0], "-o", "out.h5", "-q"] + args
+    print("-- run (cd %s && %s) with RLIMIT_FSIZE = 300 kB" % (folder, " ".join(cmd)))
+    proc = subprocess.Popen(cmd, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=ENV,
+                            preexec_fn=fsize_limit)
+    rc, err, _ = finish(proc)
+    t.check_equal(name, "exit code", 2, rc)
+    t.check(name, "one line with the system's reason", len(err) == 1 and "File too large" in err[0],
+            "one line '... File too large ...'", err)
+    t.check_equal(name, "existing out.h5 unchanged (sha256)", h_before, sha(os.path.join(folder, "out.h5")))
+    partial = os.path.join(folder, "out.h5.%d.partial" % proc.pid)
+    t.check(name, "the partial file is named in the message", bool(err) and os.path.basename(partial) in err[0],
+            os.path.basename(partial), err)
+    try:
+        with h5py.File(partial, "r") as f:
+            nsnap = len(f["fields"]) if "fields" in f else 0
+            t.check(name, "partial file readable with the mesh", f["mesh/coordinates"].shape[0] > 0, True, True)
+            t.info(name, "snapshots on disk before the failure", nsnap)
+    except OSError as e:
+        t.check(name, "partial file opens", False, "readable", str(e))
+    t.check_equal(name, "no lock file left", [], [n for n in leftovers(folder) if n.endswith(".lock")])
+
+    # ---- a full disk: a small tmpfs, where the machine allows mounting one -------------------
+    name = "disk_full"
+    mnt = tempfile.mkdtemp(prefix="c2d_tmpfs_", dir=t.workdir)
+    mounted = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=256k", "tmpfs", mnt],
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    if mounted.returncode != 0:
+        print("SKIP disk_full: cannot mount a tmpfs here (%s)" %
+              mounted.stdout.decode("utf-8", "replace").strip())
+    else:
+        try:
+            shutil.copy(quick[0], os.path.join(mnt, "deck.nml"))
+            rc, err, _ = finish(start(t, mnt, "deck.nml", args))
+            t.check_equal(name, "exit code", 2, rc)
+            t.check(name, "one line: No space left on device", len(err) == 1 and "No space left on device" in err[0],
+                    "one line '... No space left on device ...'", err)
+        finally:
+            subprocess.run(["umount", mnt])
+
+    # ---- semantics ---------------------------------------------------------------------------
+    name = "load_unload"
+    folder = t.subdir(name)
+    deck = os.path.join(t.here, "decks", "load_unload.nml")
+    rc, err, out = finish(start(t, folder, deck, []))
+    t.check_equal(name, "exit code", 0, rc)
+    with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+        t.check_equal(name, "converged (stress-free end state)", 1, int(f.attrs["converged"]))
+        umax = float(np.abs(f["final/displacement"][:]).max())
+        t.check_le(name, "max |u| at the end / peak 1e-3 mm", umax / 1e-3, 1e-6,
+                   reason="the load is removed: the unique elastic equilibrium is u = 0")
+
+    name = "snapshots_one_step"
+    folder = t.subdir(name)
+    rc, err, _ = finish(start(t, folder, quick[0], ["--set", "output:snapshot_times=1e-12,2e-12,5e-7"]))
+    t.check_equal(name, "exit code", 0, rc)
+    with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+        groups = sorted(f["fields"].keys(), key=int)
+        dt = float(f.attrs["dt"])
+    t.check_equal(name, "snapshot groups (times 1e-12 and 2e-12 share step 1)",
+                  ["1", str(int(np.ceil(5e-7 / dt - 1e-9)))], groups)
+
+    name = "dt_factor_huge"
+    folder = t.subdir(name)
+    rc, err, out = finish(start(t, folder, quick[0], ["--set", "solver:dt_factor=1e29",
+                                                      "--set", "solver:allow_unstable=.true."]))
+    t.check_equal(name, "exit code (blow-up)", 2, rc)
+    t.check(name, "summary printed (no formatting crash)", "dt / dt_critical" in out and "End of record" not in out
+            + " ".join(err), True, False)
+    with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+        t.check_equal(name, "status", "blow-up", c2dtest.attr_str(f.attrs["status"]))
+
+    name = "obstacle_normal_away"
+    folder = t.subdir(name)
+    rc, err, _ = finish(start(t, folder, t.deck("patch_compression_p1.nml"),
+                              ["--set", "contact:obstacle_normal=0,-1", "--set", "solver:max_steps=20"]))
+    t.check_equal(name, "exit code", 0, rc)
+    t.check(name, "warning names obstacle_normal", any("warning" in e and "obstacle_normal" in e and "away" in e
+                                                       for e in err), True, err)
+
+
+if __name__ == "__main__":
+    c2dtest.Test("faults: interrupts, kill -9, concurrent runs, write failures, semantics").main(body)
