@@ -104,7 +104,8 @@ contains
                                     c%obstacle_point, c%obstacle_normal, c%origin, c%multiplier, &
                                     c%friction, c%threshold, c%threshold_abscissa(1:c%npoints), &
                                     c%threshold_values(1:c%npoints), c%tresca_scope, c%method, &
-                                    c%penalty_stiffness, model%warnings, stat, errmsg)
+                                    c%penalty_stiffness, model%warnings, stat, errmsg, &
+                                    friction_coefficient=c%friction_coefficient)
          end associate
          if (stat /= 0) errmsg = deck%path//': '//errmsg
       end subroutine build_contact
