@@ -161,7 +161,7 @@ def solve(prob, mu_f, increments=20, tol=1e-12, max_iter=60, r_factor=1.0, noisy
         tpts += list(prev + (b - prev) * np.arange(1, increments + 1) / increments)
         prev = b
     u_prev = np.zeros(ndof)
-    total_it, worst_kkt, history = 0, 0.0, []
+    total_it, worst_kkt, history, reductions = 0, 0.0, [], 0
     ok = True
     for k, tk in enumerate(tpts):
         if keys:
@@ -172,17 +172,30 @@ def solve(prob, mu_f, increments=20, tol=1e-12, max_iter=60, r_factor=1.0, noisy
             md.set_variable(name, vec)
         md.set_variable("wt", u_prev)
         conv, kkt = False, np.inf
+        best, since_best = np.inf, 0
         for it in range(1, max_iter + 1):
             md.solve("max_iter", 1, "max_res", 0.0, "lsolver", "mumps")
             U = md.variable("u")
             fn = -md.variable("lambda_n")
             ft = -md.variable("lambda_t")
-            kkt = kkt_incremental(c, coef, U[dof[nodes]], u_prev[dof[nodes]], fn, ft)
+            kkt = kkt_incremental(c, coef, U[dof[nodes]], u_prev[dof[nodes]], fn, ft, float(np.abs(U).max()))
             if noisy:
                 print("  t %.4e Newton %2d: KKT %.2e" % (tk, it, kkt), flush=True)
             if kkt <= tol:
                 conv = True
                 break
+            # safeguard against cycling of the stick/slip sets (as getfem_reference.py): no progress
+            # in 8 iterations -> divide the augmentation parameter by 10 (the solution does not
+            # depend on it)
+            if kkt < 0.999 * best:
+                best, since_best = kkt, 0
+            else:
+                since_best += 1
+            if since_best >= 8:
+                best, since_best = np.inf, 0
+                r /= 10
+                md.set_variable("r", [r])
+                reductions += 1
         total_it += it
         worst_kkt = max(worst_kkt, kkt)
         history.append((tk, it, kkt))
@@ -192,15 +205,17 @@ def solve(prob, mu_f, increments=20, tol=1e-12, max_iter=60, r_factor=1.0, noisy
     U = md.variable("u")
     return dict(u=U[dof], fn=-md.variable("lambda_n"), ft=-md.variable("lambda_t"), coef=coef, converged=ok,
                 iterations=total_it, steps=len(tpts), kkt=worst_kkt, history=history, ndof=ndof,
-                time_setup=t1 - t0, time_solve=t2 - t1, r=r)
+                time_setup=t1 - t0, time_solve=t2 - t1, r=r, reductions=reductions)
 
 
-def kkt_incremental(c, coef, uc, uc_prev, fn, ft):
-    """Largest violation of the incremental P1 Coulomb conditions (relative)."""
+def kkt_incremental(c, coef, uc, uc_prev, fn, ft, umax):
+    """Largest violation of the incremental P1 Coulomb conditions: forces relative to the largest
+    normal force, lengths to the largest displacement of the body (umax; the contact nodes alone
+    can all sit still, closed and stuck, and then give no length scale)."""
     d = uc @ c["n"] - c["gap"]
     du = (uc - uc_prev) @ c["t"]
     fs = max(np.abs(fn).max(), 1e-300)
-    us = max(np.abs(uc).max(), np.abs(c["gap"]).max(), 1e-300)
+    us = max(umax, np.abs(c["gap"]).max(), 1e-300)
     viol = [max(-fn.min(), 0.0) / fs, max(d.max(), 0.0) / us, np.max(np.minimum(np.abs(fn) / fs, np.abs(d) / us))]
     lim = coef * np.maximum(fn, 0.0)
     viol.append(max((np.abs(ft) - lim).max(), 0.0) / fs)
@@ -283,8 +298,8 @@ def main(argv=None):
     print("  problem        %d Q1 elements, %d GetFEM dofs; P1 Coulomb mu = %g, basic brick B_N = N, B_T = T"
           % (prob["conn"].shape[0], info["ndof"], mu_f))
     print("  path           %d load steps (%d per interval), %d Newton iterations, worst KKT %.1e (tol %.0e), "
-          "%s" % (info["steps"], args.increments, info["iterations"], info["kkt"], args.tol,
-                  "converged" if info_ref["converged"] else "NOT converged"))
+          "%s; augmentation divided by 10 %d time(s)" % (info["steps"], args.increments, info["iterations"], info["kkt"],
+                  args.tol, "converged" if info_ref["converged"] else "NOT converged", info["reductions"]))
     print("  wall time      %.3f s (set-up %.3f, solve %.3f); relative residual (SPEC 5) %.2e"
           % (info["time_setup"] + info["time_solve"], info["time_setup"], info["time_solve"],
              out["diag"]["relative_residual"]))
