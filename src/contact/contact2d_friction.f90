@@ -12,11 +12,12 @@ module contact2d_friction
 
    !> A friction law: per-node tangential limits from per-node normal forces.
    type, abstract :: friction_law_t
+      character(len=16) :: label = ''   !< the deck's name of the law, set by the member's init
    contains
       !> Fill limit(i) >= 0 [N] from this step's nodal normal forces fn(i) >= 0 [N].
       procedure(friction_law_limits), deferred :: limits
       !> The deck's name of the law ('tresca', 'coulomb').
-      procedure(friction_law_name), deferred :: name
+      procedure :: name => friction_law_name
    end type friction_law_t
 
    abstract interface
@@ -26,11 +27,13 @@ module contact2d_friction
          real(wp), intent(in) :: fn(:)       !< nodal normal forces of this step [N]
          real(wp), intent(out) :: limit(:)   !< tangential limits of this step [N]
       end subroutine friction_law_limits
-
-      pure function friction_law_name(this) result(name)
-         import :: friction_law_t
-         class(friction_law_t), intent(in) :: this
-         character(len=:), allocatable :: name
-      end function friction_law_name
    end interface
+
+contains
+
+   pure function friction_law_name(this) result(name)
+      class(friction_law_t), intent(in) :: this
+      character(len=:), allocatable :: name
+      name = trim(this%label)
+   end function friction_law_name
 end module contact2d_friction

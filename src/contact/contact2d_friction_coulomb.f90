@@ -14,7 +14,6 @@ module contact2d_friction_coulomb
    contains
       procedure :: init => coulomb_law_init
       procedure :: limits => coulomb_law_limits
-      procedure :: name => coulomb_law_name
    end type coulomb_law_t
 
 contains
@@ -24,6 +23,7 @@ contains
       class(coulomb_law_t), intent(out) :: this
       real(wp), intent(in) :: coefficient
       logical, intent(in) :: slides(:)
+      this%label = 'coulomb'
       this%coefficient = merge(coefficient, 0.0_wp, slides)
    end subroutine coulomb_law_init
 
@@ -35,10 +35,4 @@ contains
       real(wp), intent(out) :: limit(:)
       limit = this%coefficient*max(fn, 0.0_wp)
    end subroutine coulomb_law_limits
-
-   pure function coulomb_law_name(this) result(name)
-      class(coulomb_law_t), intent(in) :: this
-      character(len=:), allocatable :: name
-      name = 'coulomb'
-   end function coulomb_law_name
 end module contact2d_friction_coulomb

@@ -15,7 +15,6 @@ module contact2d_friction_tresca
    contains
       procedure :: init => tresca_law_init
       procedure :: limits => tresca_law_limits
-      procedure :: name => tresca_law_name
    end type tresca_law_t
 
 contains
@@ -25,6 +24,7 @@ contains
       class(tresca_law_t), intent(out) :: this
       real(wp), intent(in) :: bound(:)
       logical, intent(in) :: in_contact_only
+      this%label = 'tresca'
       this%bound = bound
       this%in_contact_only = in_contact_only
    end subroutine tresca_law_init
@@ -43,10 +43,4 @@ contains
          limit = this%bound
       end if
    end subroutine tresca_law_limits
-
-   pure function tresca_law_name(this) result(name)
-      class(tresca_law_t), intent(in) :: this
-      character(len=:), allocatable :: name
-      name = 'tresca'
-   end function tresca_law_name
 end module contact2d_friction_tresca
