@@ -10,6 +10,7 @@ module contact2d_driver
    use contact2d_model, only: model_t, model_build
    use contact2d_explicit, only: explicit_t
    use contact2d_output, only: output_t
+   use contact2d_static_run, only: static_run, static_distance
    implicit none
    private
    public :: driver_main
@@ -31,8 +32,11 @@ contains
       real(wp) :: residual, t_load_end, omega2_power, timings(4), wall, kin_ratio
       logical :: converged, done, interactive, exists, sampled
       real(wp), allocatable :: extra(:, :)
+      real(wp) :: static_dist
+      logical :: static_converged
 
       call system_clock(clock0, rate)
+      static_dist = huge(1.0_wp)
       call cli_parse(cli, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg//new_line('a')//usage)
       if (cli%help) then
@@ -72,6 +76,13 @@ contains
       write (output_unit, '(a)') 'mesh '//str(model%mesh%nx)//' x '//str(model%mesh%ny)//' = '// &
          str(model%mesh%nel)//' Q1 elements, '//str(model%mesh%nnode)//' nodes, '// &
          str(model%stiff%nshape)//' distinct element matrix(es)'
+      if (deck%solver%method == 'static') then
+         ! the static engine (docs/static.md); a deck with an initial velocity is dynamic and
+         ! must be refused here once &initial exists
+         call static_run(deck, model, cli%output, cli%force, clock0, stat, errmsg)
+         if (stat /= 0) call fail(stat, errmsg)
+         return
+      end if
       omega2_power = 0
       if (deck%solver%power_iterations > 0) then
          if (model%contact%penalty) then
@@ -93,6 +104,7 @@ contains
                        deck%solver%damping_interval)
       call out%open(cli%output, cli%force, deck, model, stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
+      call out%file%attr(out%file%id, 'method', 'explicit')
       call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
       if (omega2_power > 0) then
          call out%file%attr(out%file%id, 'omega_max_power', sqrt(omega2_power))
@@ -167,11 +179,25 @@ contains
       timings(2) = real(t_steps, wp)/rate
       timings(3) = real(model%contact%clock_ticks, wp)/rate
       timings(4) = real(t_output, wp)/rate
+      ! solver:compare_static: energy distance of the end state to the static solution (issue 14)
+      if (deck%solver%compare_static) then
+         call static_distance(deck, model, solver%u, static_dist, static_converged, stat, errmsg)
+         if (stat /= 0) then
+            write (error_unit, '(a)') program_name//': warning: compare_static: '//errmsg
+         else
+            call out%file%attr(out%file%id, 'static_distance_energy', static_dist)
+            call out%file%attr(out%file%id, 'static_converged', merge(1, 0, static_converged))
+         end if
+      end if
       call system_clock(clock1)
       wall = real(clock1 - clock0, wp)/rate
       call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
       call summary(model, deck, solver, cli%output, converged, status, residual, wall, timings)
+      if (deck%solver%compare_static .and. static_dist < huge(1.0_wp)) then
+         write (output_unit, '(a)') ' static distance     '//sci(static_dist)//' (energy norm ||u - u_static||_K / '// &
+            '||u_static||_K'//trim(merge('); static NOT converged', ')                      ', .not. static_converged))
+      end if
       if (solver%blown_up) then
          call fail(2, 'the run blew up at step '//str(solver%step)//' (t = '//str(solver%time)// &
                    ' s): kinetic energy '//str(solver%kinetic)//' mJ exceeds 1000 x the work put in ('// &

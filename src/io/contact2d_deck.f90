@@ -94,6 +94,9 @@ module contact2d_deck
       real(wp) :: tol_kinetic = 1.0e-12_wp  !< kinetic / strain energy at convergence
       integer :: check_interval = 10      !< steps between convergence checks
       integer :: power_iterations = 100   !< power iterations for the true omega_max (0: skip)
+      character(len=8) :: method = 'explicit'  !< 'explicit' | 'static' (docs/static.md, issue 14)
+      integer :: static_increments = 1    !< static load increments along the load curves, >= 1
+      logical :: compare_static = .false. !< explicit run: report the energy distance to the static solution
    end type solver_cfg_t
 
    !> &output: what is written and how often.
@@ -648,10 +651,14 @@ contains
       real(wp) :: dt, dt_factor, t_ramp, t_end, alpha, tol_residual, tol_kinetic
       logical :: allow_unstable
       integer :: max_steps, damping_interval, check_interval, power_iterations, ios, i
-      character(len=8) :: damping
+      character(len=8) :: damping, method
+      integer :: static_increments
+      logical :: compare_static
       character(len=256) :: msg
       namelist /solver/ dt, dt_factor, allow_unstable, t_ramp, t_end, max_steps, damping, &
-         alpha, damping_interval, tol_residual, tol_kinetic, check_interval, power_iterations
+         alpha, damping_interval, tol_residual, tol_kinetic, check_interval, power_iterations, &
+         method, static_increments, compare_static
+      method = cfg%method; static_increments = cfg%static_increments; compare_static = cfg%compare_static
       dt = cfg%dt; dt_factor = cfg%dt_factor; allow_unstable = cfg%allow_unstable
       t_ramp = cfg%t_ramp; t_end = cfg%t_end; max_steps = cfg%max_steps
       damping = cfg%damping; alpha = cfg%alpha; damping_interval = cfg%damping_interval
@@ -670,6 +677,7 @@ contains
       cfg%damping = damping; cfg%alpha = alpha; cfg%damping_interval = damping_interval
       cfg%tol_residual = tol_residual; cfg%tol_kinetic = tol_kinetic
       cfg%check_interval = check_interval; cfg%power_iterations = power_iterations
+      cfg%method = method; cfg%static_increments = static_increments; cfg%compare_static = compare_static
    end subroutine read_solver
 
    subroutine read_output(blk, ovr, where, cfg, stat, errmsg)
@@ -784,6 +792,21 @@ contains
          end if
          if (s%power_iterations < 0) then
             errmsg = 'solver:power_iterations = '//str(s%power_iterations)//' must be >= 0'
+            return
+         end if
+         ! the static engine (docs/static.md)
+         s%method = lower(s%method)
+         if (.not. any(s%method == [character(len=8) :: 'explicit', 'static'])) then
+            errmsg = "solver:method = '"//trim(s%method)//"' is not one of 'explicit', 'static'"
+            return
+         end if
+         if (s%static_increments < 1) then
+            errmsg = 'solver:static_increments = '//str(s%static_increments)//' must be >= 1'
+            return
+         end if
+         if (s%method == 'static' .and. s%compare_static) then
+            errmsg = "solver:compare_static = .true. compares an explicit run with the static solution; "// &
+                     "it has no meaning with method = 'static'"
             return
          end if
       end associate
@@ -930,6 +953,13 @@ contains
                errmsg = "contact:penalty_stiffness is set but method = 'lagrange' ignores it"
                return
             end if
+            ! the static engine solves the multiplier problem (13) only (docs/static.md)
+            if (c%method == 'penalty' .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
+               errmsg = 'solver:'//trim(merge("method = 'static'", 'compare_static   ', deck%solver%method == 'static'))// &
+                        " needs contact:method = 'lagrange': the static engine solves the multiplier problem (13), "// &
+                        'not the penalty one'
+               return
+            end if
          end associate
       end if
       stat = 0
@@ -1058,7 +1088,8 @@ contains
                 kv('damping_interval', str(s%damping_interval))// &
                 kv('tol_residual', str(s%tol_residual))//kv('tol_kinetic', str(s%tol_kinetic))// &
                 kv('check_interval', str(s%check_interval))// &
-                kv('power_iterations', str(s%power_iterations))//'/'//nl
+                kv('power_iterations', str(s%power_iterations))//kv('method', q(s%method))// &
+                kv('static_increments', str(s%static_increments))//kv('compare_static', str(s%compare_static))//'/'//nl
       end associate
       text = text//'&output'//nl//kv('history_interval', str(deck%output%history_interval))// &
              kv('xdmf', str(deck%output%xdmf))//kv('progress', str(deck%output%progress))
