@@ -200,7 +200,12 @@ def body(t):
     bad_inc = t.run(t.deck("patch_compression_p1.nml"), "--static", "--set", "solver:static_increments=0",
                     name="refuse_increments")
     t.expect_exit(bad_inc, 1)
-    for r in (pen, pen2, sing, bad_method, bad_inc):
+    # an initial velocity makes a dynamic problem: no static solution to compare with
+    moving = t.run(t.deck("impact_bar_p1.nml"), "--static", name="refuse_initial_velocity")
+    t.expect_exit(moving, 1)
+    t.check(moving, "message names initial:velocity", "initial:velocity" in moving.stderr, "initial:velocity",
+            moving.stderr.strip())
+    for r in (pen, pen2, sing, bad_method, bad_inc, moving):
         t.check_equal(r, "error lines on stderr", 1, len(r.error_lines()))
         t.check_equal(r, "output file written", False, os.path.exists(r.h5))
 
