@@ -133,7 +133,8 @@ contains
                                     c%obstacle_point, c%obstacle_normal, c%origin, c%multiplier, &
                                     c%friction, c%threshold, c%threshold_abscissa(1:c%npoints), &
                                     c%threshold_values(1:c%npoints), c%tresca_scope, c%method, &
-                                    c%penalty_stiffness, model%warnings, stat, errmsg)
+                                    c%penalty_stiffness, model%warnings, stat, errmsg, &
+                                    friction_coefficient=c%friction_coefficient)
             ! the obstacle normal nu points from the obstacle into the body, so against the
             ! candidate side's outward normal; pointing away, no node can ever touch: warn
             if (stat == 0 .and. dot_product(c%obstacle_normal, outward(:, edge_id(c%edge))) > 0) then

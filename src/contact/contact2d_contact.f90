@@ -1,6 +1,7 @@
 !> Contact of the body with a rigid straight obstacle: forward-increment Lagrange multipliers
-!> (Carpenter, Taylor & Katona 1991) with P1 or P0 multipliers and Tresca friction
-!> (SPEC sections 3, 4, 6; the paper's (10)-(13) and (17)), or a penalty for comparison.
+!> (Carpenter, Taylor & Katona 1991) with P1 or P0 multipliers and Tresca or Coulomb friction
+!> (SPEC sections 3, 4, 6; the paper's (10)-(13) and (17); Coulomb and the friction-law seam:
+!> docs/friction.md), or a penalty for comparison.
 !>
 !> Geometry is fixed and precomputed: contact nodes x_0..x_N ordered by abscissa, n = -nu (the
 !> body's outward normal), t = (-n2, n1), gaps g_i = (x_i - P).nu, weights w_i = integral of
@@ -11,6 +12,8 @@ module contact2d_contact
    use contact2d_strings, only: str
    use contact2d_messages, only: messages_t
    use contact2d_lcp, only: lcp_t
+   use contact2d_friction, only: friction_law_t
+   use contact2d_friction_factory, only: friction_law_create
    implicit none
    private
    public :: contact_t, status_separated, status_stick, status_slip
@@ -27,7 +30,9 @@ module contact2d_contact
       integer :: multiplier = multiplier_p1 !< P1 or P0
       logical :: penalty = .false.          !< method = 'penalty' (normal force k_p w_i max(d_i, 0))
       real(wp) :: penalty_stiffness = 0     !< k_p [MPa/mm]
-      logical :: friction = .false.         !< Tresca friction
+      logical :: friction = .false.         !< Tresca or Coulomb friction (law allocated)
+      class(friction_law_t), allocatable :: law   !< the friction law (docs/friction.md section 2)
+      real(wp) :: friction_coefficient = 0  !< Coulomb mu [-] (0 unless friction = 'coulomb')
       logical :: friction_in_contact_only = .false.   !< tresca_scope = 'contact'
       real(wp) :: normal(2) = 0             !< n, outward normal of the body on Gamma_c
       real(wp) :: tangent(2) = 0            !< t = (-n2, n1)
@@ -37,7 +42,8 @@ module contact2d_contact
       real(wp), allocatable :: weight(:)    !< w_i = integral of phi_i over Gamma_c [mm]
       real(wp), allocatable :: gap(:)       !< initial gap g_i [mm]
       real(wp), allocatable :: threshold(:) !< s_i [MPa]
-      real(wp), allocatable :: limit(:)     !< s_i w_i [N]
+      real(wp), allocatable :: limit(:)     !< Tresca s_i w_i [N]
+      real(wp), allocatable :: slip_limit(:)  !< tangential limit of the last step [N] (the law's)
       real(wp), allocatable :: mass(:)      !< lumped mass m_i [t]
       logical, allocatable :: slides(:)     !< tangential dof free (friction applies)
       ! P0: D (tridiagonal: dl(i) = D(i+1, i) = D(i, i+1), dd(i) = D(i, i)) and the LCP
@@ -79,7 +85,7 @@ contains
    !> boundary touching a Dirichlet boundary is accepted with a warning (inf-sup lost).
    subroutine contact_init(this, candidates, x, free, mass, obstacle_point, obstacle_normal, origin, &
                            multiplier, friction, threshold, profile_s, profile_values, tresca_scope, &
-                           method, penalty_stiffness, warnings, stat, errmsg)
+                           method, penalty_stiffness, warnings, stat, errmsg, friction_coefficient)
       class(contact_t), intent(out) :: this
       integer, intent(in) :: candidates(:)
       real(wp), intent(in) :: x(:, :), free(:, :), mass(:)
@@ -92,6 +98,7 @@ contains
       type(messages_t), intent(inout) :: warnings
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
+      real(wp), intent(in), optional :: friction_coefficient  !< Coulomb mu (friction = 'coulomb')
       logical, allocatable :: keep(:)
       real(wp) :: nu(2), e(2), tol, lmax
       integer :: i, k, nd, ntouch
@@ -197,7 +204,7 @@ contains
       end associate
 
       ! friction threshold s_i: uniform, or piecewise linear in the abscissa (held beyond the ends)
-      this%friction = friction == 'tresca'
+      this%friction = friction == 'tresca'   ! Tresca's s_i below; the law is made after
       this%friction_in_contact_only = tresca_scope == 'contact'
       if (size(profile_s) > 0) then
          do i = 1, this%nc
@@ -209,6 +216,16 @@ contains
       if (.not. this%friction) this%threshold = 0
       ! no friction force where the tangential dof is prescribed: the reaction carries it
       this%limit = merge(this%threshold*this%weight, 0.0_wp, this%slides)
+      ! the friction law (docs/friction.md section 2): Tresca s_i w_i, Coulomb mu F_n,i
+      if (present(friction_coefficient)) this%friction_coefficient = friction_coefficient
+      call friction_law_create(friction, this%limit, this%slides, this%friction_coefficient, tresca_scope, &
+                               this%law, stat, errmsg)
+      if (stat /= 0) return
+      stat = 1
+      this%friction = allocated(this%law)
+      allocate (this%slip_limit(this%nc))
+      if (this%friction) call this%law%limits(this%fn, this%fn, this%slip_limit)
+      if (.not. this%friction) this%slip_limit = 0
 
       this%penalty = method == 'penalty'
       this%penalty_stiffness = penalty_stiffness
@@ -335,20 +352,18 @@ contains
          if (this%stat == 0) call this%lcp%solve(this%b, this%mu, this%stat, this%errmsg)
          call d_apply(this, this%mu, this%fn)
       end if
-      ! tangential forces: trial stick, else slip at the threshold (nodal Tresca)
+      ! tangential forces: the law's limits from this step's normal forces (one call on plain
+      ! arrays), then trial stick, else slip at the limit (docs/friction.md section 1)
       if (this%friction) then
+         ! contact judged like the status (SPEC section 3): P1 by F_n, P0 on the node's own dual cell
+         if (cells) then
+            call this%law%limits(this%fn, this%mu, this%slip_limit)
+         else
+            call this%law%limits(this%fn, this%fn, this%slip_limit)
+         end if
          do i = 1, this%nc
             k = this%node(i)
-            lim = this%limit(i)
-            ! tresca_scope = 'contact': friction only where in contact, judged like the status
-            ! (P0: on the node's own dual cell, mu_n,i > 0; SPEC section 3)
-            if (this%friction_in_contact_only) then
-               if (cells) then
-                  if (.not. this%mu(i) > 0) lim = 0
-               else if (.not. this%fn(i) > 0) then
-                  lim = 0
-               end if
-            end if
+            lim = this%slip_limit(i)
             trial = this%mass(i)*((unew(1, k) - u(1, k))*tx + (unew(2, k) - u(2, k))*ty)*rc
             this%ft(i) = sign(min(abs(trial), lim), trial)
             this%stuck(i) = abs(trial) < lim
@@ -418,10 +433,11 @@ contains
       end if
       if (.not. touching) then
          status = status_separated
-      else if (.not. this%friction .or. (this%threshold(i) <= 0 .and. this%slides(i))) then
-         ! no friction or a zero threshold s_i = 0: the node slides freely (docs/output.md)
+      else if (.not. this%friction .or. (this%slip_limit(i) <= 0 .and. this%slides(i))) then
+         ! no friction, or a zero limit this step (Tresca s_i = 0, Coulomb mu = 0): the node
+         ! slides freely (docs/output.md)
          status = status_slip
-      else if (this%limit(i) > 0 .and. abs(this%ft(i)) >= (1 - slip_tol)*this%limit(i)) then
+      else if (this%slip_limit(i) > 0 .and. abs(this%ft(i)) >= (1 - slip_tol)*this%slip_limit(i)) then
          status = status_slip
       else
          status = status_stick

@@ -82,7 +82,8 @@ module contact2d_deck
       real(wp) :: origin(2) = [unset, unset]       !< point O of the abscissa; default: first node
       character(len=4) :: direction = 'ccw'        !< abscissa runs 'ccw' or 'cw' along the boundary
       character(len=4) :: multiplier = 'P1'        !< 'P1' | 'P0'
-      character(len=16) :: friction = 'frictionless'  !< 'frictionless' | 'tresca'
+      character(len=16) :: friction = 'frictionless'  !< 'frictionless' | 'tresca' | 'coulomb'
+      real(wp) :: friction_coefficient = 0         !< Coulomb mu [-], >= 0 (docs/friction.md)
       real(wp) :: threshold = 0                    !< uniform Tresca threshold s [MPa], >= 0
       real(wp) :: threshold_abscissa(max_points) = unset  !< abscissae of a piecewise-linear s [mm]
       real(wp) :: threshold_values(max_points) = unset    !< s at those abscissae [MPa]
@@ -699,12 +700,12 @@ contains
       character(len=line_len) :: edge, friction, direction, multiplier, tresca_scope, method
       real(wp) :: xmin, xmax, ymin, ymax, obstacle_point(2), obstacle_normal(2), origin(2)
       real(wp) :: threshold, threshold_abscissa(max_points), threshold_values(max_points)
-      real(wp) :: penalty_stiffness
+      real(wp) :: penalty_stiffness, friction_coefficient
       integer :: ios, i
       character(len=256) :: msg
       namelist /contact/ edge, xmin, xmax, ymin, ymax, obstacle_point, obstacle_normal, origin, &
          direction, multiplier, friction, threshold, threshold_abscissa, threshold_values, &
-         tresca_scope, method, penalty_stiffness
+         tresca_scope, method, penalty_stiffness, friction_coefficient
       edge = cfg%edge; xmin = cfg%xmin; xmax = cfg%xmax; ymin = cfg%ymin; ymax = cfg%ymax
       obstacle_point = cfg%obstacle_point; obstacle_normal = cfg%obstacle_normal
       origin = cfg%origin; direction = cfg%direction; multiplier = cfg%multiplier
@@ -712,6 +713,7 @@ contains
       threshold_abscissa = cfg%threshold_abscissa; threshold_values = cfg%threshold_values
       tresca_scope = cfg%tresca_scope; method = cfg%method
       penalty_stiffness = cfg%penalty_stiffness
+      friction_coefficient = cfg%friction_coefficient
       read (blk, nml=contact, iostat=ios, iomsg=msg)
       if (read_failed(ios, msg, where, stat, errmsg)) return
       do i = 1, size(ovr)
@@ -731,6 +733,7 @@ contains
       cfg%threshold_abscissa = threshold_abscissa; cfg%threshold_values = threshold_values
       cfg%tresca_scope = tresca_scope; cfg%method = method
       cfg%penalty_stiffness = penalty_stiffness
+      cfg%friction_coefficient = friction_coefficient
    end subroutine read_contact
 
    subroutine read_solver(blk, ovr, where, cfg, stat, errmsg)
@@ -1072,8 +1075,18 @@ contains
                return
             end if
             c%friction = lower(c%friction)
-            if (.not. any(c%friction == [character(len=16) :: 'frictionless', 'tresca'])) then
-               errmsg = "contact:friction = '"//trim(c%friction)//"' is not one of 'frictionless', 'tresca'"
+            if (.not. any(c%friction == [character(len=16) :: 'frictionless', 'tresca', 'coulomb'])) then
+               errmsg = "contact:friction = '"//trim(c%friction)//"' is not one of 'frictionless', 'tresca', 'coulomb'"
+               return
+            end if
+            ! Coulomb (docs/friction.md): a finite mu >= 0, and no Tresca settings with it
+            if (.not. (c%friction_coefficient >= 0 .and. c%friction_coefficient <= huge(1.0_wp))) then
+               errmsg = 'contact:friction_coefficient = '//str(c%friction_coefficient)//' must be finite and >= 0'
+               return
+            end if
+            if (c%friction /= 'coulomb' .and. c%friction_coefficient /= 0) then
+               errmsg = "contact:friction_coefficient is set but friction = '"//trim(c%friction)// &
+                        "'; use friction = 'coulomb'"
                return
             end if
             if (.not. c%threshold >= 0) then
@@ -1106,13 +1119,18 @@ contains
                   end if
                end do
             end if
-            if (c%friction == 'frictionless' .and. (c%threshold /= 0 .or. c%npoints > 0)) then
-               errmsg = "contact: a threshold is given but friction = 'frictionless'; use friction = 'tresca'"
+            if (c%friction /= 'tresca' .and. (c%threshold /= 0 .or. c%npoints > 0)) then
+               errmsg = "contact: a threshold is given but friction = '"//trim(c%friction)//"'; use friction = 'tresca'"
                return
             end if
             c%tresca_scope = lower(c%tresca_scope)
             if (.not. any(c%tresca_scope == [character(len=8) :: 'all', 'contact'])) then
                errmsg = "contact:tresca_scope = '"//trim(c%tresca_scope)//"' is not one of 'all', 'contact'"
+               return
+            end if
+            if (c%friction == 'coulomb' .and. c%tresca_scope /= 'all') then
+               errmsg = "contact:tresca_scope = '"//trim(c%tresca_scope)//"' applies to Tresca only; "// &
+                        "Coulomb friction acts where F_n > 0"
                return
             end if
             c%method = lower(c%method)
@@ -1298,7 +1316,9 @@ contains
             if (all(c%origin /= unset)) text = text//kv('origin', reals(c%origin))
             text = text//kv('direction', q(c%direction))//kv('multiplier', q(c%multiplier))// &
                    kv('friction', q(c%friction))
-            if (c%npoints > 0) then
+            if (c%friction == 'coulomb') then
+               text = text//kv('friction_coefficient', str(c%friction_coefficient))
+            else if (c%npoints > 0) then
                text = text//kv('threshold_abscissa', reals(c%threshold_abscissa(1:c%npoints)))// &
                       kv('threshold_values', reals(c%threshold_values(1:c%npoints)))
             else
