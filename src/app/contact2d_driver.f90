@@ -80,7 +80,7 @@ contains
             extra = 0
             do i = 1, model%contact%nc
                extra(:, model%contact%node(i)) = model%contact%penalty_stiffness*model%contact%weight(i)* &
-                                                  model%contact%normal**2
+                                                  model%contact%normal(:, i)**2
             end do
             omega2_power = model%stiff%power_omega2(model%load%free, deck%solver%power_iterations, extra)
          else
