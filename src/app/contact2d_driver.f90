@@ -69,7 +69,9 @@ contains
       do i = 1, model%warnings%n
          write (error_unit, '(a)') program_name//': warning: '//trim(model%warnings%items(i))
       end do
-      write (output_unit, '(a)') 'mesh '//str(model%mesh%nx)//' x '//str(model%mesh%ny)//' = '// &
+      write (output_unit, '(a)') 'mesh '//trim(merge(str(model%mesh%nx)//' x '//str(model%mesh%ny)//' = ', &
+                                                      'from '//trim(deck%mesh%file)//': ', &
+                                                      model%mesh%nx > 0))//' '// &
          str(model%mesh%nel)//' Q1 elements, '//str(model%mesh%nnode)//' nodes, '// &
          str(model%stiff%nshape)//' distinct element matrix(es)'
       omega2_power = 0

@@ -42,7 +42,7 @@ contains
 
       if (len_trim(deck%mesh%file) > 0) then
          ! a Gmsh mesh (docs/geometry.md): quads only, oriented, Jacobians checked
-         call gmsh_read(trim(deck%mesh%file), deck%mesh%level, model%mesh, stat, errmsg)
+         call gmsh_read(beside(deck%path, trim(deck%mesh%file)), deck%mesh%level, model%mesh, stat, errmsg)
          if (stat /= 0) then
             errmsg = deck%path//': '//errmsg
             return
@@ -229,4 +229,17 @@ contains
          end if
       end subroutine add_edge_load
    end subroutine model_build
+
+   !> A relative file name is taken relative to the deck's directory (docs/geometry.md).
+   function beside(deck_path, file) result(path)
+      character(len=*), intent(in) :: deck_path, file
+      character(len=:), allocatable :: path
+      integer :: slash
+      slash = index(deck_path, '/', back=.true.)
+      if (file(1:1) == '/' .or. slash == 0) then
+         path = file
+      else
+         path = deck_path(1:slash)//file
+      end if
+   end function beside
 end module contact2d_model

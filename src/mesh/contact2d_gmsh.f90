@@ -441,8 +441,10 @@ contains
       character(len=:), allocatable :: s
       character(kind=c_char), pointer :: chars(:)
       integer :: i, n
-      s = ''
-      if (.not. c_associated(p)) return
+      if (.not. c_associated(p)) then
+         s = ''
+         return
+      end if
       n = int(c_strlen(p))
       call c_f_pointer(p, chars, [n])
       allocate (character(len=n) :: s)
