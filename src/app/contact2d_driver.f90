@@ -69,9 +69,12 @@ contains
       do i = 1, model%warnings%n
          write (error_unit, '(a)') program_name//': warning: '//trim(model%warnings%items(i))
       end do
-      write (output_unit, '(a)') 'mesh '//trim(merge(str(model%mesh%nx)//' x '//str(model%mesh%ny)//' = ', &
-                                                      'from '//trim(deck%mesh%file)//': ', &
-                                                      model%mesh%nx > 0))//' '// &
+      if (model%mesh%nx > 0) then
+         errmsg = str(model%mesh%nx)//' x '//str(model%mesh%ny)//' ='
+      else
+         errmsg = 'from '//trim(deck%mesh%file)//':'
+      end if
+      write (output_unit, '(a)') 'mesh '//errmsg//' '// &
          str(model%mesh%nel)//' Q1 elements, '//str(model%mesh%nnode)//' nodes, '// &
          str(model%stiff%nshape)//' distinct element matrix(es)'
       omega2_power = 0
