@@ -238,7 +238,7 @@ contains
 
    !> Edges of group g with both nodes in [range(1), range(2)] x [range(3), range(4)] (closed, with
    !> the mesh tolerance), oriented as their element runs counter-clockwise (the body on the left),
-   !> and the distinct nodes of those edges in increasing id.
+   !> and the distinct nodes of the group inside the range, in increasing id.
    subroutine mesh_select_group(this, g, range, nodes, seg, interior)
       class(mesh_t), intent(in) :: this
       integer, intent(in) :: g
@@ -267,9 +267,12 @@ contains
                interior = count(keep .and. .not. this%gboundary(this%gstart(g):this%gstart(g + 1) - 1))
          end if
       end associate
+      ! the nodes: every node of the group inside the range (a single node is a selection too)
       mark = .false.
-      mark(pack(seg, .true.)) = .true.
-      nodes = pack([(i, i=1, this%nnode)], mark)
+      associate (gs => this%gseg(:, this%gstart(g):this%gstart(g + 1) - 1))
+         mark(pack(gs, .true.)) = .true.
+      end associate
+      nodes = pack([(i, i=1, this%nnode)], mark .and. inside)
    end subroutine mesh_select_group
 
    !> The edges of group g within the range as one chain of boundary edges, nodes in order
