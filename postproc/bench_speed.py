@@ -11,7 +11,8 @@ For each mesh level k (13 2^k x 3 2^k elements):
   3. the same problem solved by the GetFEM static reference on the same mesh, timed in the same
      run (median of --repeats; postproc/getfem_reference.py, Tresca when it converges, else the
      frictionless variant for both codes), and the ratio explicit / static.
-Then the targets of issue 5 with PASS/MISS. Timings are wall-clock on a shared machine: medians,
+Then the targets of issue 5 with PASS/MISS, and the price of the general (Gmsh) path: ns per
+element-step on the Hertz Gmsh mesh against a structured mesh of the same size (issue 10). Timings are wall-clock on a shared machine: medians,
 and ratios of two things measured side by side.
 """
 import argparse
@@ -95,6 +96,47 @@ def getfem_time(src, out, level, friction, repeats):
     return statistics.median(walls), statistics.median(procs), None
 
 
+def general_path(exe, out, repeats, level=1):
+    """ns per element-step of the step loop (1 thread, fixed steps, medians of interleaved runs) on
+    the Hertz Gmsh mesh (inputs/hertz_indenter_p1.nml at `level`: general block-CSR path, one
+    matrix per element) and on a built-in structured mesh of about as many elements (the paper
+    deck with nx x ny set accordingly: structured stencil), and their ratio (issue 10)."""
+    hertz_deck = ROOT / "inputs" / "hertz_indenter_p1.nml"
+    common = {"solver:t_end": 1.0, "solver:tol_residual": 1e-300, "solver:power_iterations": 0,
+              "output:xdmf": False}
+    probe = out / "general_probe.h5"
+    if run(exe, hertz_deck, probe, {"mesh:level": level, "solver:max_steps": 1, **common}).returncode != 0:
+        sys.exit("general-path probe run failed")
+    with Run(probe) as r:
+        nel = int(r.attrs["element_count"])
+    probe.unlink()
+    ny = max(1, int(round(np.sqrt(nel * 3 / 13))))
+    nx = max(1, int(round(nel / ny)))
+    steps = max(200, int(3e8 / nel))
+    ns = {"gmsh": [], "structured": []}
+    for i in range(repeats):
+        for kind in ("gmsh", "structured"):
+            h5 = out / f"general_{kind}_{i}.h5"
+            if kind == "gmsh":
+                res = run(exe, hertz_deck, h5, {"mesh:level": level, "solver:max_steps": steps,
+                                                "output:history_interval": steps, **common}, threads=1)
+            else:
+                res = run(exe, DECK, h5, {"mesh:level": 0, "mesh:nx": nx, "mesh:ny": ny, "solver:max_steps": steps,
+                                          "output:history_interval": steps, **common}, threads=1)
+            if res.returncode != 0:
+                sys.exit(f"general-path run failed: {res.stderr}")
+            with Run(h5) as r:
+                ns[kind].append(1e9 * float(r.attrs["time_steps_seconds"])
+                                / (int(r.attrs["steps"]) * int(r.attrs["element_count"])))
+            h5.unlink()
+    g, s_ = statistics.median(ns["gmsh"]), statistics.median(ns["structured"])
+    print(f"\ngeneral path (issue 10), 1 thread, {steps} steps, median of {repeats}:")
+    print(f"  Hertz Gmsh mesh (level {level}, {nel} elements): {g:.2f} ns per element-step")
+    print(f"  structured {nx} x {ny} = {nx * ny} elements:        {s_:.2f} ns per element-step")
+    print(f"  ratio general / structured: {g / s_:.2f}")
+    return {"elements": nel, "ns_gmsh": g, "ns_structured": s_, "ratio": g / s_}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--exe", help="contact2d executable (default build/bin/contact2d)")
@@ -161,6 +203,7 @@ def main():
         if r["level"] >= 5:
             print(f"  {'PASS' if r['speedup'] >= 1.7 else 'MISS'} >= 1.7x on two threads at k = {r['level']}: "
                   f"{r['speedup']:.2f}x")
+    rows.append({"general_path": general_path(exe, out, args.repeats)})
     (out / "bench.json").write_text(json.dumps(rows, indent=1))
     print(f"wrote {out / 'bench.json'}")
 
