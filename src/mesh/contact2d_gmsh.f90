@@ -10,6 +10,8 @@ module contact2d_gmsh
    use, intrinsic :: iso_c_binding, only: c_int, c_size_t, c_double, c_char, c_ptr, c_null_ptr, &
                                           c_null_char, c_f_pointer, c_associated, c_funptr, &
                                           c_f_procpointer
+   use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, ieee_set_flag, &
+                                            ieee_all, ieee_usual
    use contact2d_gmsh_config, only: gmsh_library_path
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str
@@ -184,6 +186,22 @@ contains
       type(mesh_t), intent(inout) :: mesh
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
+      logical :: halting(size(ieee_usual))
+      ! Gmsh's own arithmetic may raise IEEE flags (e.g. a 0/0 it handles itself): no floating-
+      ! point traps while it runs (the Debug build traps invalid, zero and overflow), restored after
+      call ieee_get_halting_mode(ieee_usual, halting)
+      call ieee_set_halting_mode(ieee_usual, .false.)
+      call read_untrapped(path, level, mesh, stat, errmsg)
+      call ieee_set_flag(ieee_all, .false.)
+      call ieee_set_halting_mode(ieee_usual, halting)
+   end subroutine gmsh_read
+
+   subroutine read_untrapped(path, level, mesh, stat, errmsg)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: level
+      type(mesh_t), intent(inout) :: mesh
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
       integer(c_int) :: ierr, ierr2
       logical :: exists
       integer :: k
@@ -233,7 +251,7 @@ contains
          stat = 1
          errmsg = 'mesh: gmshFinalize failed (ierr = '//str(int(ierr2))//')'
       end if
-   end subroutine gmsh_read
+   end subroutine read_untrapped
 
    !> Load libgmsh and its symbols once (dlopen/dlsym). stat /= 0 with a message if it is missing.
    subroutine load_gmsh(stat, errmsg)
