@@ -59,7 +59,7 @@ def parse_effective_deck(text):
         if m and current is not None:
             key, val = m.group(1).lower(), _value(m.group(2))
             if key in ("values", "times", "threshold_abscissa", "threshold_values", "snapshot_times",
-                       "obstacle_point", "obstacle_normal", "origin") and not isinstance(val, list):
+                       "obstacle_point", "obstacle_normal", "origin", "velocity") and not isinstance(val, list):
                 val = [val]
             current[key] = val
     return deck

@@ -1,4 +1,4 @@
-!> Command line: contact2d DECK [-o OUT.h5] [--force] [--set group:variable=value ...]
+!> Command line: contact2d DECK [-o OUT.h5] [--force] [--static] [--set group:variable=value ...]
 module contact2d_cli
    implicit none
    private
@@ -18,7 +18,7 @@ module contact2d_cli
    end type cli_t
 
    character(len=*), parameter :: usage = &
-      'usage: contact2d DECK [-o OUT.h5] [--force] [--set group:variable=value ...] [--quiet]'// &
+      'usage: contact2d DECK [-o OUT.h5] [--force] [--static] [--set group:variable=value ...] [--quiet]'// &
       new_line('a')//'       contact2d --help | --version'
 
 contains
@@ -49,6 +49,10 @@ contains
             cli%force = .true.
          case ('-q', '--quiet')
             cli%quiet = .true.
+         case ('--static')
+            ! the static engine (docs/static.md): the same as --set solver:method='static'
+            nset = nset + 1
+            cli%sets(nset) = "solver:method='static'"
          case ('-o', '--output')
             if (i == n) then
                errmsg = trim(arg)//' needs a file name'

@@ -10,6 +10,8 @@ module contact2d_driver
    use contact2d_model, only: model_t, model_build
    use contact2d_explicit, only: explicit_t
    use contact2d_output, only: output_t
+   use contact2d_static_run, only: static_run, static_distance
+   use contact2d_initial, only: initial_velocity_apply, initial_velocity_warning
    implicit none
    private
    public :: driver_main
@@ -31,8 +33,11 @@ contains
       real(wp) :: residual, t_load_end, omega2_power, timings(4), wall, kin_ratio
       logical :: converged, done, interactive, exists, sampled
       real(wp), allocatable :: extra(:, :)
+      real(wp) :: static_dist
+      logical :: static_converged
 
       call system_clock(clock0, rate)
+      static_dist = huge(1.0_wp)
       call cli_parse(cli, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg//new_line('a')//usage)
       if (cli%help) then
@@ -59,6 +64,8 @@ contains
       end if
       call model_build(deck, model, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
+      errmsg = initial_velocity_warning(model%load%free, deck%initial%velocity)
+      if (len(errmsg) > 0) call model%warnings%add(errmsg)
 
       write (output_unit, '(a)') program_name//' '//program_version//': '//cli%deck//' -> '//cli%output
       if (.not. cli%quiet) then
@@ -77,6 +84,12 @@ contains
       write (output_unit, '(a)') 'mesh '//errmsg//' '// &
          str(model%mesh%nel)//' Q1 elements, '//str(model%mesh%nnode)//' nodes, '// &
          str(model%stiff%nshape)//' distinct element matrix(es)'
+      if (deck%solver%method == 'static') then
+         ! the static engine (docs/static.md); decks it cannot honour were refused by the deck reader
+         call static_run(deck, model, cli%output, cli%force, clock0, stat, errmsg)
+         if (stat /= 0) call fail(stat, errmsg)
+         return
+      end if
       omega2_power = 0
       if (deck%solver%power_iterations > 0) then
          if (model%contact%penalty) then
@@ -96,13 +109,19 @@ contains
 
       call solver%init(model%stiff, model%load, model%dt, model%damping, deck%solver%alpha, &
                        deck%solver%damping_interval)
+      if (any(deck%initial%velocity /= 0)) call initial_velocity_apply(solver, model%load%free, deck%initial%velocity)
       call out%open(cli%output, cli%force, deck, model, stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
+      call out%file%attr(out%file%id, 'method', 'explicit')
       call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
       if (omega2_power > 0) then
          call out%file%attr(out%file%id, 'omega_max_power', sqrt(omega2_power))
          call out%file%attr(out%file%id, 'dt_stable_estimate', 2/sqrt(omega2_power))
       end if
+      ! issue 12: the kind of run and the energy put in at t = 0 (docs/output.md)
+      call out%file%attr(out%file%id, 'dynamic', merge(1, 0, deck%dynamic))
+      call out%file%attr(out%file%id, 'convergence_test', merge(1, 0, deck%convergence_test))
+      call out%file%attr(out%file%id, 'initial_kinetic_energy', solver%initial_kinetic)
       call out%sample(solver, model, 0.0_wp)
 
       call system_clock(clock1)
@@ -116,6 +135,7 @@ contains
       converged = .false.
       done = .false.
       status = 'not converged'
+      if (.not. deck%convergence_test) status = trim(merge('dynamic            ', 'no convergence test', deck%dynamic))
       residual = huge(1.0_wp)
       isnap = 1
       snap_step = next_snapshot(deck, model%dt, isnap)
@@ -140,7 +160,7 @@ contains
                status = 'contact solver failure'
                done = .true.
             else
-               if (mod(solver%step, check) == 0 .and. solver%time >= t_load_end) then
+               if (deck%convergence_test .and. mod(solver%step, check) == 0 .and. solver%time >= t_load_end) then
                   residual = solver%residual(model%load)
                   kin_ratio = merge(solver%kinetic/solver%strain, solver%kinetic, solver%strain > 0)
                   if (residual < deck%solver%tol_residual .and. kin_ratio < deck%solver%tol_kinetic) then
@@ -172,11 +192,25 @@ contains
       timings(2) = real(t_steps, wp)/rate
       timings(3) = real(model%contact%clock_ticks, wp)/rate
       timings(4) = real(t_output, wp)/rate
+      ! solver:compare_static: energy distance of the end state to the static solution (issue 14)
+      if (deck%solver%compare_static) then
+         call static_distance(deck, model, solver%u, static_dist, static_converged, stat, errmsg)
+         if (stat /= 0) then
+            write (error_unit, '(a)') program_name//': warning: compare_static: '//errmsg
+         else
+            call out%file%attr(out%file%id, 'static_distance_energy', static_dist)
+            call out%file%attr(out%file%id, 'static_converged', merge(1, 0, static_converged))
+         end if
+      end if
       call system_clock(clock1)
       wall = real(clock1 - clock0, wp)/rate
       call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
       call summary(model, deck, solver, cli%output, converged, status, residual, wall, timings)
+      if (deck%solver%compare_static .and. static_dist < huge(1.0_wp)) then
+         write (output_unit, '(a)') ' static distance     '//sci(static_dist)//' (energy norm ||u - u_static||_K / '// &
+            '||u_static||_K'//trim(merge('); static NOT converged', ')                      ', .not. static_converged))
+      end if
       if (solver%blown_up) then
          call fail(2, 'the run blew up at step '//str(solver%step)//' (t = '//str(solver%time)// &
                    ' s): kinetic energy '//str(solver%kinetic)//' mJ exceeds 1000 x the work put in ('// &
@@ -296,6 +330,9 @@ contains
       associate (c => model%contact)
          if (converged) then
             conv = 'yes (relative residual '//sci(residual)//' < '//sci(deck%solver%tol_residual)//')'
+         else if (.not. deck%convergence_test) then
+            conv = 'not tested (solver:convergence_test = '''//trim(deck%solver%convergence_test)// &
+                   '''); status: '//status
          else
             conv = 'NO: '//status//' (relative residual '//sci(residual)//', tolerance '// &
                    sci(deck%solver%tol_residual)//')'
@@ -304,6 +341,10 @@ contains
          write (output_unit, '(a)') repeat('-', 72)
          write (output_unit, '(a)') ' steps               '//str(solver%step)//'   (t = '//sci(solver%time)//' s)'
          write (output_unit, '(a)') ' dt / dt_critical    '//fixed(model%dt/model%dt_critical, 4)
+         if (deck%dynamic) write (output_unit, '(a)') ' run                 dynamic: initial velocity ('// &
+            sci(deck%initial%velocity(1))//', '//sci(deck%initial%velocity(2))//') mm/s, no damping, '// &
+            trim(merge('stops when converged or at t_end =', 'ends at t_end =                   ', deck%convergence_test))//' '// &
+            sci(deck%solver%t_end)//' s; initial kinetic energy '//sci(solver%initial_kinetic)//' mJ'
          write (output_unit, '(a)') ' converged           '//conv
          write (output_unit, '(a)') ' energy balance      '//sci(solver%balance_error(c%friction_dissipation, c%normal_work))// &
             ' (relative error; W_ext = '//sci(solver%external_work)//' mJ)'

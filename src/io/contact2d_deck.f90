@@ -3,17 +3,18 @@
 !> variable).
 !>
 !> A deck is a text file of namelist groups. Text outside groups must be blank or a `!` comment.
-!> Groups: &mesh, &material, &solver, &output and &contact once each, &dirichlet and &traction as
+!> Groups: &mesh, &material, &solver, &output, &contact and &initial once each, &dirichlet and &traction as
 !> many times as needed. Each group is read from its own block with iostat/iomsg; a failure
 !> names the deck line of the group and the runtime's message.
 module contact2d_deck
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str, lower, join
    use contact2d_material, only: material_t, material_init
    implicit none
    private
    public :: deck_t, deck_read, mesh_cfg_t, material_cfg_t, edge_load_cfg_t, contact_cfg_t
-   public :: solver_cfg_t, output_cfg_t, unset, max_stages, max_points, edge_id, group_names
+   public :: solver_cfg_t, output_cfg_t, initial_cfg_t, unset, max_stages, max_points, edge_id, group_names
 
    !> Marks a real variable the deck did not set.
    real(wp), parameter :: unset = huge(1.0_wp)
@@ -24,8 +25,9 @@ module contact2d_deck
    !> Longest accepted deck line.
    integer, parameter :: line_len = 1024
 
-   character(len=9), parameter :: group_names(7) = [character(len=9) :: &
-                                                    'mesh', 'material', 'dirichlet', 'traction', 'contact', 'solver', 'output']
+   character(len=9), parameter :: group_names(8) = [character(len=9) :: &
+                                                    'mesh', 'material', 'dirichlet', 'traction', 'contact', 'solver', 'output', &
+                                                    'initial']
    character(len=6), parameter :: edges(4) = [character(len=6) :: 'bottom', 'right', 'top', 'left']
 
    !> &mesh: structured rectangle [0, lx] x [0, ly] with (nx 2^level) x (ny 2^level) elements,
@@ -103,7 +105,17 @@ module contact2d_deck
       real(wp) :: tol_kinetic = 1.0e-12_wp  !< kinetic / strain energy at convergence
       integer :: check_interval = 10      !< steps between convergence checks
       integer :: power_iterations = 100   !< power iterations for the true omega_max (0: skip)
+      character(len=8) :: method = 'explicit'  !< 'explicit' | 'static' (docs/static.md, issue 14)
+      integer :: static_increments = 1    !< static load increments along the load curves, >= 1
+      logical :: compare_static = .false. !< explicit run: report the energy distance to the static solution
+      !> 'auto' | 'on' | 'off': stop at convergence; 'auto' is off for dynamic runs (issue 12)
+      character(len=8) :: convergence_test = 'auto'
    end type solver_cfg_t
+
+   !> &initial: the state at t = 0 (issue 12, docs/deck.md).
+   type :: initial_cfg_t
+      real(wp) :: velocity(2) = [0.0_wp, 0.0_wp]   !< uniform initial velocity (vx, vy) [mm/s]
+   end type initial_cfg_t
 
    !> &output: what is written and how often.
    type :: output_cfg_t
@@ -126,6 +138,11 @@ module contact2d_deck
       type(contact_cfg_t) :: contact
       type(solver_cfg_t) :: solver
       type(output_cfg_t) :: output
+      type(initial_cfg_t) :: initial
+      !> derived: a dynamic run (non-zero initial velocity and damping = 'none', issue 12)
+      logical :: dynamic = .false.
+      !> derived: the run stops at convergence (solver:convergence_test resolved)
+      logical :: convergence_test = .true.
    end type deck_t
 
    !> One group occurrence in the deck: its name, first and last line.
@@ -433,6 +450,7 @@ contains
          case ('material'); call read_material(none, pick(ovr, 'material', 1), where, deck%material, stat, errmsg)
          case ('solver'); call read_solver(none, pick(ovr, 'solver', 1), where, deck%solver, stat, errmsg)
          case ('output'); call read_output(none, pick(ovr, 'output', 1), where, deck%output, stat, errmsg)
+         case ('initial'); call read_initial(none, pick(ovr, 'initial', 1), where, deck%initial, stat, errmsg)
          case ('contact')
             if (any(ovr%group == 'contact')) then
                stat = 1
@@ -449,6 +467,7 @@ contains
             case ('material'); call read_material(blk, pick(ovr, 'material', 1), where, deck%material, stat, errmsg)
             case ('solver'); call read_solver(blk, pick(ovr, 'solver', 1), where, deck%solver, stat, errmsg)
             case ('output'); call read_output(blk, pick(ovr, 'output', 1), where, deck%output, stat, errmsg)
+            case ('initial'); call read_initial(blk, pick(ovr, 'initial', 1), where, deck%initial, stat, errmsg)
             case ('contact')
                deck%contact%present = .true.
                call read_contact(blk, pick(ovr, 'contact', 1), where, deck%contact, stat, errmsg)
@@ -663,15 +682,20 @@ contains
       real(wp) :: dt, dt_factor, t_ramp, t_end, alpha, tol_residual, tol_kinetic
       logical :: allow_unstable
       integer :: max_steps, damping_interval, check_interval, power_iterations, ios, i
-      character(len=8) :: damping
+      character(len=8) :: damping, method, convergence_test
+      integer :: static_increments
+      logical :: compare_static
       character(len=256) :: msg
       namelist /solver/ dt, dt_factor, allow_unstable, t_ramp, t_end, max_steps, damping, &
-         alpha, damping_interval, tol_residual, tol_kinetic, check_interval, power_iterations
+         alpha, damping_interval, tol_residual, tol_kinetic, check_interval, power_iterations, &
+         method, static_increments, compare_static, convergence_test
+      method = cfg%method; static_increments = cfg%static_increments; compare_static = cfg%compare_static
       dt = cfg%dt; dt_factor = cfg%dt_factor; allow_unstable = cfg%allow_unstable
       t_ramp = cfg%t_ramp; t_end = cfg%t_end; max_steps = cfg%max_steps
       damping = cfg%damping; alpha = cfg%alpha; damping_interval = cfg%damping_interval
       tol_residual = cfg%tol_residual; tol_kinetic = cfg%tol_kinetic
       check_interval = cfg%check_interval; power_iterations = cfg%power_iterations
+      convergence_test = cfg%convergence_test
       if (size(blk) > 0) then
          read (blk, nml=solver, iostat=ios, iomsg=msg)
          if (read_failed(ios, msg, where, stat, errmsg)) return
@@ -685,7 +709,33 @@ contains
       cfg%damping = damping; cfg%alpha = alpha; cfg%damping_interval = damping_interval
       cfg%tol_residual = tol_residual; cfg%tol_kinetic = tol_kinetic
       cfg%check_interval = check_interval; cfg%power_iterations = power_iterations
+      cfg%method = method; cfg%static_increments = static_increments; cfg%compare_static = compare_static
+      cfg%convergence_test = convergence_test
    end subroutine read_solver
+
+   !> &initial (issue 12): the uniform initial velocity.
+   subroutine read_initial(blk, ovr, where, cfg, stat, errmsg)
+      character(len=line_len), intent(in) :: blk(:)
+      type(override_t), intent(in) :: ovr(:)
+      character(len=*), intent(in) :: where
+      type(initial_cfg_t), intent(inout) :: cfg
+      integer, intent(inout) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      real(wp) :: velocity(2)
+      integer :: ios, i
+      character(len=256) :: msg
+      namelist /initial/ velocity
+      velocity = cfg%velocity
+      if (size(blk) > 0) then
+         read (blk, nml=initial, iostat=ios, iomsg=msg)
+         if (read_failed(ios, msg, where, stat, errmsg)) return
+      end if
+      do i = 1, size(ovr)
+         read (ovr(i)%assignment, nml=initial, iostat=ios, iomsg=msg)
+         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+      end do
+      cfg%velocity = velocity
+   end subroutine read_initial
 
    subroutine read_output(blk, ovr, where, cfg, stat, errmsg)
       character(len=line_len), intent(in) :: blk(:)
@@ -817,7 +867,59 @@ contains
             errmsg = 'solver:power_iterations = '//str(s%power_iterations)//' must be >= 0'
             return
          end if
+         ! the static engine (docs/static.md)
+         s%method = lower(s%method)
+         if (.not. any(s%method == [character(len=8) :: 'explicit', 'static'])) then
+            errmsg = "solver:method = '"//trim(s%method)//"' is not one of 'explicit', 'static'"
+            return
+         end if
+         if (s%static_increments < 1) then
+            errmsg = 'solver:static_increments = '//str(s%static_increments)//' must be >= 1'
+            return
+         end if
+         if (s%method == 'static' .and. s%compare_static) then
+            errmsg = "solver:compare_static = .true. compares an explicit run with the static solution; "// &
+                     "it has no meaning with method = 'static'"
+            return
+         end if
+         s%convergence_test = lower(s%convergence_test)
+         if (.not. any(s%convergence_test == [character(len=8) :: 'auto', 'on', 'off'])) then
+            errmsg = "solver:convergence_test = '"//trim(s%convergence_test)//"' is not one of 'auto', 'on', 'off'"
+            return
+         end if
       end associate
+
+      ! &initial (issue 12): a finite velocity; with damping = 'none' a non-zero one makes the
+      ! run dynamic (no convergence test unless solver:convergence_test = 'on'; t_end bounds it)
+      do i = 1, 2
+         if (.not. ieee_is_finite(deck%initial%velocity(i))) then
+            ! named without arithmetic on the value (Debug builds trap invalid operations)
+            if (ieee_is_nan(deck%initial%velocity(i))) then
+               errmsg = 'NaN'
+            else
+               errmsg = trim(merge('+Infinity', '-Infinity', sign(1.0_wp, deck%initial%velocity(i)) > 0))
+            end if
+            errmsg = 'initial:velocity('//str(i)//') = '//errmsg//' must be finite (mm/s)'
+            return
+         end if
+      end do
+      deck%dynamic = any(deck%initial%velocity /= 0) .and. deck%solver%damping == 'none'
+      select case (trim(deck%solver%convergence_test))
+      case ('on'); deck%convergence_test = .true.
+      case ('off'); deck%convergence_test = .false.
+      case default; deck%convergence_test = .not. deck%dynamic
+      end select
+      if (deck%dynamic .and. deck%solver%t_end == 0) then
+         errmsg = "solver:t_end is required for a dynamic run (initial:velocity /= 0 with damping = 'none')"
+         return
+      end if
+      ! the static engine solves for equilibrium: an initial velocity has no meaning there (issue 14)
+      if (any(deck%initial%velocity /= 0) .and. &
+          (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
+         errmsg = "initial:velocity = "//str(deck%initial%velocity(1))//", "//str(deck%initial%velocity(2))// &
+                  " has no meaning for the static engine (solver:method = 'static' or compare_static)"
+         return
+      end if
 
       associate (o => deck%output)
          if (o%history_interval < 1) then
@@ -992,6 +1094,13 @@ contains
                errmsg = "contact:penalty_stiffness is set but method = 'lagrange' ignores it"
                return
             end if
+            ! the static engine solves the multiplier problem (13) only (docs/static.md)
+            if (c%method == 'penalty' .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
+               errmsg = 'solver:'//trim(merge("method = 'static'", 'compare_static   ', deck%solver%method == 'static'))// &
+                        " needs contact:method = 'lagrange': the static engine solves the multiplier problem (13), "// &
+                        'not the penalty one'
+               return
+            end if
          end associate
       end if
       stat = 0
@@ -1159,8 +1268,11 @@ contains
                 kv('damping_interval', str(s%damping_interval))// &
                 kv('tol_residual', str(s%tol_residual))//kv('tol_kinetic', str(s%tol_kinetic))// &
                 kv('check_interval', str(s%check_interval))// &
-                kv('power_iterations', str(s%power_iterations))//'/'//nl
+                kv('power_iterations', str(s%power_iterations))//kv('method', q(s%method))// &
+                kv('static_increments', str(s%static_increments))//kv('compare_static', str(s%compare_static))// &
+                kv('convergence_test', q(s%convergence_test))//'/'//nl
       end associate
+      text = text//'&initial'//nl//kv('velocity', reals(deck%initial%velocity))//'/'//nl
       text = text//'&output'//nl//kv('history_interval', str(deck%output%history_interval))// &
              kv('xdmf', str(deck%output%xdmf))//kv('progress', str(deck%output%progress))
       if (deck%output%nsnapshot > 0) text = text//kv('snapshot_times', &

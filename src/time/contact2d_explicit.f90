@@ -57,6 +57,7 @@ module contact2d_explicit
       real(wp) :: external_work = 0        !< loads and Dirichlet reactions
       real(wp) :: work_in = 0              !< sum of |external work increments|
       real(wp) :: damping_dissipation = 0
+      real(wp) :: initial_kinetic = 0      !< 1/2 v^(-1/2) M v^(-1/2), energy put in at t = 0 (issue 12)
       logical :: blown_up = .false.
    contains
       procedure :: init => explicit_init
@@ -342,15 +343,16 @@ contains
       end if
    end function explicit_residual
 
-   !> |W_ext - (E_kin + E_strain + D_friction + D_damping + W_normal)| / max(terms).
+   !> |E_kin0 + W_ext - (E_kin + E_strain + D_friction + D_damping + W_normal)| / max(terms),
+   !> E_kin0 the initial kinetic energy (issue 12).
    real(wp) function explicit_balance_error(this, friction, normal_work) result(err)
       class(explicit_t), intent(in) :: this
       real(wp), intent(in) :: friction, normal_work
       real(wp) :: scale
       scale = max(abs(this%external_work), abs(this%kinetic), abs(this%strain), abs(friction), &
-                  abs(this%damping_dissipation), abs(normal_work))
+                  abs(this%damping_dissipation), abs(normal_work), this%initial_kinetic)
       if (scale > 0) then
-         err = abs(this%external_work - (this%kinetic + this%strain + friction + &
+         err = abs(this%initial_kinetic + this%external_work - (this%kinetic + this%strain + friction + &
                                           this%damping_dissipation + normal_work))/scale
       else
          err = 0

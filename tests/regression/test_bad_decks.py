@@ -58,6 +58,11 @@ CASES = [
      r"group &solver is not closed by '/'"),
     ("text_outside_groups", "bad_decks/text_outside_groups.nml", [],
      r":5: text outside any namelist group"),
+    # issue 12: &initial and dynamic runs
+    ("initial_velocity_nan", "inputs/impact_bar_p1.nml", ["--set", "initial:velocity=NaN,-1000"],
+     r"initial:velocity\(1\) = .*must be finite"),
+    ("dynamic_without_t_end", "inputs/impact_bar_p1.nml", ["--set", "solver:t_end=0"],
+     r"solver:t_end is required for a dynamic run"),
 ]
 
 # Bytes of the output file that already exists in the 'existing_output' case (not HDF5 on

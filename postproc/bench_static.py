@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""Benchmark of the static engine (issue 14) on the paper scene: prints its figures.
+
+    /usr/bin/python3 postproc/bench_static.py [--levels 4-6] [--repeats 3] [--explicit-repeats 1]
+                                              [--multiplier P1] [--out study/bench_static]
+
+For each mesh level k (13 2^k x 3 2^k elements), on one thread (OMP_NUM_THREADS=1):
+  1. static solve time (contact2d --static: assembly + CHOLMOD factorisation, condensation onto
+     Gamma_c, active-set iteration and solves; the file's time_*_seconds attributes) and its wall
+     time, medians of --repeats runs;
+  2. the explicit run's wall time to its quasi-static end state (the shipped deck, relative
+     residual 1e-8), median of --explicit-repeats runs, interleaved with the static runs so that
+     both see the same machine load, and the ratio explicit / static;
+  3. the issue-14 targets: static solve within 2x of 0.43 s (level 5) and 1.9 s (level 6), PASS/MISS.
+Timings are wall-clock on a possibly shared machine: medians, ratios of things measured side by side.
+postproc/bench_speed.py can call static_times() for its own tables.
+"""
+import argparse
+import statistics
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from c2dh5 import Run  # noqa: E402
+from c2drun import ROOT, find_exe, run  # noqa: E402
+
+TARGETS = {5: 0.43, 6: 1.9}     # issue 14: CHOLMOD with the contact condensed [s]; target within 2x
+
+
+def parse_levels(text):
+    a, _, b = text.partition("-")
+    return list(range(int(a), int(b or a) + 1))
+
+
+def static_times(exe, deck, out, level):
+    """One static run: (solve seconds, wall seconds, factor, condense, increments seconds)."""
+    h5 = out / f"static_k{level}.h5"
+    res = run(exe, deck, h5, {"mesh:level": level, "solver:method": "static", "output:xdmf": False}, threads=1)
+    if res.returncode != 0:
+        sys.exit(f"static run failed (level {level}): {res.stderr.strip()}")
+    with Run(h5) as r:
+        parts = [float(r.attrs[k]) for k in ("time_factor_seconds", "time_condense_seconds", "time_solve_seconds")]
+        wall = float(r.attrs["wall_seconds"])
+    h5.unlink()
+    return sum(parts), wall, *parts
+
+
+def explicit_time(exe, deck, out, level):
+    """Wall seconds and steps of an explicit run to its quasi-static end state (one thread)."""
+    h5 = out / f"explicit_k{level}.h5"
+    res = run(exe, deck, h5, {"mesh:level": level, "output:xdmf": False}, threads=1)
+    if res.returncode != 0:
+        sys.exit(f"explicit run failed (level {level}): {res.stderr.strip()}")
+    with Run(h5) as r:
+        wall, steps = float(r.attrs["wall_seconds"]), int(r.attrs["steps"])
+    h5.unlink()
+    return wall, steps
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--levels", default="4-6", help="mesh levels, e.g. 4-6 (default)")
+    ap.add_argument("--repeats", type=int, default=3, help="static runs per level (median)")
+    ap.add_argument("--explicit-repeats", type=int, default=1, help="explicit runs per level (0: skip)")
+    ap.add_argument("--multiplier", default="P1", choices=["P1", "P0"])
+    ap.add_argument("--out", default=str(ROOT / "study" / "bench_static"), help="scratch directory")
+    ap.add_argument("--exe", help="contact2d executable (default: $CONTACT2D or build/bin/contact2d)")
+    args = ap.parse_args()
+    exe = find_exe(args.exe)
+    deck = ROOT / "inputs" / f"baillet_sassi_2002_{args.multiplier.lower()}.nml"
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+
+    print(f"static engine benchmark, paper scene {args.multiplier} Tresca, one thread; "
+          f"medians of {args.repeats} static / {args.explicit_repeats} explicit run(s)")
+    header = (f"{'level':>5} {'elements':>9} {'static s':>9} {'(factor':>8} {'condense':>9} {'solve)':>8} "
+              f"{'wall s':>8} {'explicit s':>11} {'steps':>8} {'expl/static':>12}")
+    print(header)
+    rows = {}
+    for level in parse_levels(args.levels):
+        st, ex = [], []
+        for i in range(max(args.repeats, args.explicit_repeats)):
+            if i < args.repeats:
+                st.append(static_times(exe, deck, out, level))
+            if i < args.explicit_repeats:
+                ex.append(explicit_time(exe, deck, out, level))
+        med = [statistics.median(x[j] for x in st) for j in range(5)]
+        ewall = statistics.median(e[0] for e in ex) if ex else float("nan")
+        esteps = ex[0][1] if ex else 0
+        rows[level] = med[0]
+        print(f"{level:>5} {39 * 4**level:>9} {med[0]:>9.3f} {med[2]:>8.3f} {med[3]:>9.3f} {med[4]:>8.3f} "
+              f"{med[1]:>8.3f} {ewall:>11.3f} {esteps:>8} {ewall / med[0]:>12.1f}")
+        sys.stdout.flush()
+    for level, ref in TARGETS.items():
+        if level in rows:
+            verdict = "PASS" if rows[level] <= 2 * ref else "MISS"
+            print(f"target level {level}: static solve {rows[level]:.3f} s <= 2 x {ref} s: {verdict}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,279 @@
+!> The driver's static branch (solver:method = 'static' or --static; docs/static.md): solve,
+!> write the same HDF5 file as an explicit run (SPEC section 8 with dt = 0, steps = increments,
+!> method = 'static' and the KKT residuals as attributes) and print the summary. Also the
+!> energy-norm distance of an explicit end state to the static solution (solver:compare_static).
+!> Nothing here stops the program: the driver does, with the code and message returned.
+module contact2d_static_run
+   use, intrinsic :: iso_fortran_env, only: output_unit
+   use contact2d_kinds, only: wp, i8
+   use contact2d_strings, only: str
+   use contact2d_deck, only: deck_t
+   use contact2d_model, only: model_t
+   use contact2d_explicit, only: explicit_t, damping_none
+   use contact2d_output, only: output_t
+   use contact2d_static, only: static_t, kkt_names
+   implicit none
+   private
+   public :: static_run, static_distance
+
+contains
+
+   !> Run the static engine and write `path`. code: 0 converged; 1 refused before anything was
+   !> written (singular stiffness, model not supported); 2 written but not converged or failed.
+   subroutine static_run(deck, model, path, overwrite, clock0, code, errmsg)
+      type(deck_t), intent(in) :: deck
+      type(model_t), intent(inout) :: model
+      character(len=*), intent(in) :: path
+      logical, intent(in) :: overwrite
+      integer(i8), intent(in) :: clock0   !< system_clock at program start
+      integer, intent(out) :: code
+      character(len=:), allocatable, intent(out) :: errmsg
+      type(static_t) :: st
+      type(explicit_t) :: state
+      type(output_t) :: out
+      integer :: k, nk, stat, i
+      integer(i8) :: clock1, rate
+      real(wp) :: t_end, t, wall, timings(4), w_prev, wf, wn, kkt_max(4), residual
+      real(wp), allocatable :: uprev(:, :), react_prev(:, :), fext_prev(:, :), fn_prev(:), d(:), dprev(:)
+      logical :: converged, ok
+      character(len=:), allocatable :: message, status
+
+      code = 1
+      call supported(deck, stat, errmsg)
+      if (stat /= 0) return
+      call st%setup(model, stat, errmsg)
+      if (stat /= 0) then
+         call st%free()
+         return
+      end if
+      nk = deck%solver%static_increments
+      t_end = model%load%end_time()
+      model%dt = 0
+      write (output_unit, '(a)') 'static engine: '//str(st%nfree)//' free dofs, '//str(st%ncdof)// &
+         ' condensed onto Gamma_c ('//str(st%nc)//' normal, '//str(st%nt)//' tangential unknowns); CHOLMOD factor '// &
+         str(nint(st%chol%lnz))//' nonzeros, '//sci(st%chol%flops)//' flops, smallest pivot / diagonal '// &
+         sci(st%chol%pivot_ratio)//'; '//str(nk)//' increment(s) to t = '//sci(t_end)//' s'
+
+      call state%init(model%stiff, model%load, 0.0_wp, damping_none, 0.0_wp, 1)
+      call out%open(path, overwrite, deck, model, stat, errmsg)
+      if (stat /= 0) then
+         code = 2
+         call st%free()
+         return
+      end if
+      call out%file%attr(out%file%id, 'method', 'static')
+      call out%sample(state, model, 0.0_wp)
+
+      allocate (uprev(2, model%mesh%nnode), react_prev(2, model%mesh%nnode), fext_prev(2, model%mesh%nnode))
+      uprev = 0
+      react_prev = 0
+      fext_prev = 0
+      allocate (fn_prev(st%nc), d(st%nc), dprev(st%nc))
+      fn_prev = 0
+      dprev = 0
+      if (model%contact%active) dprev = -model%contact%gap
+      converged = .true.
+      status = 'converged'
+      kkt_max = 0
+      residual = 0
+      do k = 1, nk
+         t = t_end*real(k, wp)/nk
+         call st%increment(model, t, ok, message, stat, errmsg)
+         if (stat /= 0) then
+            converged = .false.
+            status = 'static solver failure'
+            exit
+         end if
+         kkt_max = max(kkt_max, st%kkt)
+         ! the state for the output module (an explicit_t at rest)
+         state%u = st%u
+         state%v = 0
+         state%fint = st%fint
+         state%fext = st%fext
+         state%fc = st%fc
+         state%step = k
+         state%time = t
+         state%kinetic = 0
+         state%strain = 0.5_wp*sum(st%u*st%fint)
+         ! work of the loads and reactions: trapezoid over the increment (exact when the increment
+         ! is linear; a diagnostic otherwise, see docs/static.md)
+         ! (reactions live on the prescribed dofs, tractions on the free ones)
+         w_prev = 0.5_wp*sum((react_prev + fext_prev + (st%fint - st%fext)*(1 - model%load%free) + st%fext)* &
+                             (st%u - uprev))
+         state%external_work = state%external_work + w_prev
+         associate (c => model%contact)
+            if (c%active) then
+               c%fn = st%fn
+               c%ft = st%ft
+               c%mu = st%mu
+               do i = 1, st%nc
+                  d(i) = dot_product(st%u(:, c%node(i)), c%normal(:, i)) - c%gap(i)
+               end do
+               ! friction: F_t times the slip of the increment (backward Euler, exact for the law);
+               ! normal work: F_n times the change of d
+               wf = 0
+               do i = 1, st%nc
+                  wf = wf + st%ft(i)*dot_product(st%u(:, c%node(i)) - uprev(:, c%node(i)), c%tangent(:, i))
+               end do
+               wn = sum(st%fn*(d - dprev))
+               c%friction_dissipation = c%friction_dissipation + wf
+               c%normal_work = c%normal_work + wn
+               c%normal_total = sum(st%fn)
+               c%tangential_total = sum(st%ft)
+               c%penetration_max = max(0.0_wp, c%penetration(st%u))
+               c%stat = 0
+               dprev = d
+            end if
+         end associate
+         residual = st%kkt(4)
+         react_prev = (st%fint - st%fext)*(1 - model%load%free)
+         fext_prev = st%fext
+         uprev = st%u
+         call out%sample(state, model, residual)
+         if (.not. ok) then
+            converged = .false.
+            status = 'not converged: '//message//' (increment '//str(k)//')'
+            exit
+         end if
+      end do
+
+      call system_clock(clock1, rate)
+      wall = real(clock1 - clock0, wp)/rate
+      timings = [st%time_factor + st%time_condense, st%time_pdas, 0.0_wp, 0.0_wp]
+      do i = 1, 4
+         call out%file%attr(out%file%id, 'kkt_'//trim(kkt_names(i)), kkt_max(i))
+      end do
+      call out%file%attr(out%file%id, 'static_increments', nk)
+      call out%file%attr(out%file%id, 'static_iterations', st%iterations)
+      call out%file%attr(out%file%id, 'static_outer_iterations', st%outer_iterations)
+      call out%file%attr(out%file%id, 'factor_nonzeros', st%chol%lnz)
+      call out%file%attr(out%file%id, 'factor_flops', st%chol%flops)
+      call out%file%attr(out%file%id, 'time_factor_seconds', st%time_factor)
+      call out%file%attr(out%file%id, 'time_condense_seconds', st%time_condense)
+      call out%file%attr(out%file%id, 'time_solve_seconds', st%time_pdas)
+      call out%finish(model, state, converged, status, wall, timings, stat, errmsg)
+      if (stat /= 0) then
+         code = 2
+         call st%free()
+         return
+      end if
+      call summary()
+      call st%free()
+      if (converged) then
+         code = 0
+         errmsg = ''
+      else
+         code = 2
+         if (len(errmsg) == 0) errmsg = 'static engine: '//status
+         errmsg = errmsg//'; '//path//' holds the last iterate'
+      end if
+   contains
+      subroutine summary()
+         integer :: status_c(model%contact%nc)
+         write (output_unit, '(a)') repeat('-', 72)
+         write (output_unit, '(a)') ' method              static (CHOLMOD, contact condensed onto Gamma_c, '// &
+            'primal-dual active set)'
+         write (output_unit, '(a)') ' increments          '//str(state%step)//' of '//str(nk)//' ('// &
+            str(st%iterations)//' active-set iterations, '//str(st%outer_iterations)//' threshold passes)'
+         write (output_unit, '(a)') ' converged           '//trim(merge('yes', 'NO ', converged))// &
+            trim(merge(' '//status, repeat(' ', len(status) + 1), .not. converged))
+         do i = 1, 4
+            write (output_unit, '(a)') ' KKT '//kkt_names(i)(1:21)//sci(kkt_max(i))//' (relative)'
+         end do
+         if (model%contact%active) then
+            associate (c => model%contact)
+               call c%status(status_c)
+               write (output_unit, '(a)') ' contact             '//c%multiplier_name()//', '//str(c%nc)//' nodes: '// &
+                  str(count(status_c == 1))//' stick, '//str(count(status_c == 2))//' slip, '// &
+                  str(count(status_c == 0))//' separated; total F_n = '//sci(c%normal_total)//' N, F_t = '// &
+                  sci(c%tangential_total)//' N'
+               if (any(status_c > 0)) then
+                  write (output_unit, '(a)') '                     in contact from abscissa '// &
+                     sci(minval(c%abscissa, mask=status_c > 0))//' to '//sci(maxval(c%abscissa, mask=status_c > 0))//' mm'
+               end if
+            end associate
+         end if
+         write (output_unit, '(a)') ' static solve        '//fixed(st%time_factor + st%time_condense + st%time_pdas, 3)// &
+            ' s (assembly + factorisation '//fixed(st%time_factor, 3)//', condensation '// &
+            fixed(st%time_condense, 3)//', increments '//fixed(st%time_pdas, 3)//')'
+         write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s'
+         write (output_unit, '(a)') ' output              '//path
+         write (output_unit, '(a)') repeat('-', 72)
+      end subroutine summary
+   end subroutine static_run
+
+   !> Energy-norm distance ||u - u_s||_K / ||u_s||_K of the displacement u to the static solution
+   !> of the same model (solver:static_increments increments). stat /= 0 with errmsg if the
+   !> static engine refuses or fails; converged = .false. if it did not converge.
+   subroutine static_distance(deck, model, u, dist, converged, stat, errmsg)
+      type(deck_t), intent(in) :: deck
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: u(:, :)
+      real(wp), intent(out) :: dist
+      logical, intent(out) :: converged
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      type(static_t) :: st
+      real(wp), allocatable :: du(:, :), kdu(:, :)
+      character(len=:), allocatable :: message
+      real(wp) :: t_end
+      integer :: k, nk
+      logical :: ok
+
+      dist = huge(1.0_wp)
+      converged = .false.
+      call supported(deck, stat, errmsg)
+      if (stat /= 0) return
+      call st%setup(model, stat, errmsg)
+      if (stat /= 0) return
+      nk = deck%solver%static_increments
+      t_end = model%load%end_time()
+      converged = .true.
+      do k = 1, nk
+         call st%increment(model, t_end*real(k, wp)/nk, ok, message, stat, errmsg)
+         if (stat /= 0) return
+         converged = converged .and. ok
+      end do
+      du = u - st%u
+      allocate (kdu, mold=du)
+      call model%stiff%apply(du, kdu)
+      dist = sqrt(max(sum(du*kdu), 0.0_wp))/sqrt(max(sum(st%u*st%fint), tiny(1.0_wp)))
+      call st%free()
+   end subroutine static_distance
+
+   !> The friction laws the static engine solves: frictionless and Tresca (docs/static.md).
+   !> Another law (Coulomb, when it lands) is refused rather than solved as something else;
+   !> decks with an initial velocity (dynamic by nature) are to be refused here too.
+   subroutine supported(deck, stat, errmsg)
+      type(deck_t), intent(in) :: deck
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      stat = 0
+      errmsg = ''
+      if (.not. deck%contact%present) return
+      if (.not. any(trim(deck%contact%friction) == [character(len=12) :: 'frictionless', 'tresca'])) then
+         stat = 1
+         errmsg = "the static engine solves frictionless and Tresca contact only; contact:friction = '"// &
+                  trim(deck%contact%friction)//"' is not supported with solver:method = 'static' or compare_static"
+      end if
+   end subroutine supported
+
+   function fixed(x, decimals) result(s)
+      real(wp), intent(in) :: x
+      integer, intent(in) :: decimals
+      character(len=:), allocatable :: s
+      character(len=32) :: buf, fmt
+      write (fmt, '(a,i0,a)') '(f0.', decimals, ')'
+      write (buf, fmt) x
+      s = trim(buf)
+      if (s(1:1) == '.') s = '0'//s
+   end function fixed
+
+   function sci(x) result(s)
+      real(wp), intent(in) :: x
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      write (buf, '(es10.3)') x
+      s = trim(adjustl(buf))
+   end function sci
+end module contact2d_static_run

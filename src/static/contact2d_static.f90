@@ -1,0 +1,765 @@
+!> The static engine (issue 14, docs/static.md): an exact solve of the paper's saddle-point
+!> problem (13) on the model's mesh, multipliers and friction law, with the contact condensed
+!> onto Gamma_c.
+!>
+!> 1. K is assembled once (sparse, from the element matrices) on the free dofs, the free dofs of
+!>    the contact nodes numbered last; CHOLMOD factorises it with those dofs eliminated last, so
+!>    the trailing block L22 of the factor gives the Schur complement S = L22 L22^T on them.
+!> 2. In the contact unknowns y = (T (u.n - g), u.t - psi_ref) (T = I for P1, D for P0, SPEC
+!>    section 3) the condensed problem is A (y - y0) + lambda = 0, A = P^T B S B^T P SPD dense,
+!>    y0 the contact response of the body without contact, lambda = (P1: Lambda_n, P0: mu_n;
+!>    nodal F_t), with y_n <= 0, lambda_n >= 0, y_n lambda_n = 0 and nodal Tresca
+!>    |lambda_t| <= s_i w_i, lambda_t = s_i w_i sign(y_t) where y_t /= 0.
+!> 3. A primal-dual active-set (semismooth Newton) iteration solves it exactly: until the active,
+!>    stick and slip sets repeat (converged) or an earlier set repeats (cycling: not converged).
+!> 4. u = K^-1 (f + contact forces) and the KKT residuals are checked on it.
+!> With tresca_scope = 'contact' the thresholds depend on the contact state: an outer fixed point
+!> on them, reported as not converged if it cycles.
+module contact2d_static
+   use contact2d_kinds, only: wp, i8
+   use contact2d_strings, only: str
+   use contact2d_model, only: model_t
+   use contact2d_cholmod, only: cholmod_t
+   implicit none
+   private
+   public :: static_t, kkt_names, singular_pivot_ratio
+
+   !> KKT residual names (summary and HDF5 attributes kkt_<name>), all relative.
+   character(len=24), parameter :: kkt_names(4) = [character(len=24) :: &
+      'normal_feasibility', 'complementarity', 'friction_feasibility', 'equilibrium']
+   !> A pivot L_jj^2 / K_jj below this marks a singular stiffness (a free rigid-body mode).
+   real(wp), parameter :: singular_pivot_ratio = 1.0e-11_wp
+   !> Local node and component of each of the 8 element dofs (u1x, u1y, u2x, ...).
+   integer, parameter :: node_of(8) = [1, 1, 2, 2, 3, 3, 4, 4], comp_of(8) = [1, 2, 1, 2, 1, 2, 1, 2]
+   !> PDAS and fixed-point iteration limits.
+   integer, parameter :: max_pdas = 200, max_outer = 50
+   logical, parameter :: debug = .false.
+   !> Tangential complementarity constants tried in turn (fractions of A_rr): with 1, the slip
+   !> signs of the paper scene flip-flop from level 4 on; 0.1 settles in 9-14 iterations (levels 0-6).
+   real(wp), parameter :: ct_tries(3) = [0.1_wp, 0.01_wp, 1.0_wp]
+
+   !> The factorised, condensed problem and the state of the last increment.
+   type :: static_t
+      integer :: nnode = 0
+      integer :: nfree = 0                 !< free dofs (order of K_ff)
+      integer :: ncdof = 0                 !< free dofs of the contact nodes (numbered last)
+      integer :: nc = 0                    !< contact nodes (normal unknowns)
+      integer :: nt = 0                    !< tangential unknowns
+      integer :: m = 0                     !< nc + nt
+      logical :: p0 = .false.
+      logical :: scope_contact = .false.   !< tresca_scope = 'contact'
+      integer, allocatable :: dof(:, :)    !< free-dof index of (component, node), 0 if prescribed
+      integer, allocatable :: cnode(:)     !< contact index of each unknown (m)
+      real(wp), allocatable :: bdir(:, :)  !< unknown direction (n or t) (2, m)
+      real(wp), allocatable :: a(:, :)     !< condensed operator A (m, m) [N/mm]
+      real(wp), allocatable :: limit(:)    !< s_i w_i per tangential unknown (nt) [N]
+      type(cholmod_t) :: chol
+      ! state
+      real(wp), allocatable :: u(:, :)     !< displacement (2, nnode) [mm]
+      real(wp), allocatable :: fext(:, :)  !< tractions (2, nnode) [N]
+      real(wp), allocatable :: fint(:, :)  !< K u (2, nnode) [N]
+      real(wp), allocatable :: fc(:, :)    !< contact force on the body (2, nnode) [N]
+      real(wp), allocatable :: lambda(:)   !< (mu_n or Lambda_n; F_t) (m)
+      integer, allocatable :: state(:)     !< set of each unknown (m): see pdas
+      real(wp), allocatable :: fn(:), ft(:), mu(:)   !< nodal F_n, F_t and P0 mu per contact node
+      real(wp) :: kkt(4) = 0               !< KKT residuals of the last increment (kkt_names)
+      integer :: iterations = 0            !< PDAS iterations, all increments
+      integer :: outer_iterations = 0      !< threshold fixed-point iterations, all increments
+      real(wp) :: time_factor = 0          !< assembly and factorisation [s]
+      real(wp) :: time_condense = 0        !< Schur complement and A [s]
+      real(wp) :: time_pdas = 0            !< increments: solves and PDAS [s]
+   contains
+      procedure :: setup => static_setup
+      procedure :: increment => static_increment
+      procedure :: free => static_free
+   end type static_t
+
+contains
+
+   !> Number the dofs, assemble and factorise K, condense onto the contact unknowns.
+   !> stat 1: a singular stiffness or a model the engine cannot honour (one-line errmsg).
+   subroutine static_setup(this, model, stat, errmsg)
+      class(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: k, c, i, n, nint, nnz, e, a, b, ia, ib, ncd
+      integer, allocatable :: ti(:), tj(:)
+      real(wp), allocatable :: tx(:), l22(:, :)
+      integer, allocatable :: order(:), group(:)
+      integer(i8) :: t0, t1, rate
+      logical, allocatable :: is_contact(:)
+
+      call system_clock(t0, rate)
+      stat = 1
+      errmsg = ''
+      if (model%contact%active .and. model%contact%penalty) then
+         errmsg = "the static engine solves the multiplier problem (13); contact:method = 'penalty' "// &
+                  "is not supported with solver:method = 'static'"
+         return
+      end if
+      this%nnode = model%mesh%nnode
+      associate (free => model%load%free, ct => model%contact)
+         allocate (this%dof(2, this%nnode), is_contact(this%nnode))
+         is_contact = .false.
+         if (ct%active) is_contact(ct%node) = .true.
+         this%dof = 0
+         ! interior free dofs first, then the contact dofs node by node along Gamma_c
+         nint = 0
+         do n = 1, this%nnode
+            if (is_contact(n)) cycle
+            do c = 1, 2
+               if (free(c, n) > 0) then
+                  nint = nint + 1
+                  this%dof(c, n) = nint
+               end if
+            end do
+         end do
+         ncd = 0
+         this%nc = 0
+         this%nt = 0
+         if (ct%active) then
+            this%nc = ct%nc
+            this%p0 = ct%multiplier_name() == 'P0'
+            this%scope_contact = ct%friction_in_contact_only
+            do i = 1, ct%nc
+               n = ct%node(i)
+               do c = 1, 2
+                  if (free(c, n) > 0) then
+                     ncd = ncd + 1
+                     this%dof(c, n) = nint + ncd
+                  end if
+               end do
+               if (all(free(:, n) > 0)) this%nt = this%nt + 1
+            end do
+         end if
+         this%ncdof = ncd
+         this%nfree = nint + ncd
+         this%m = this%nc + this%nt
+         ! the unknowns: normal of every contact node, then tangential where both dofs are free
+         allocate (this%cnode(this%m), this%bdir(2, this%m), this%limit(this%nt))
+         k = this%nc
+         do i = 1, this%nc
+            this%cnode(i) = i
+            this%bdir(:, i) = ct%normal(:, i)
+            if (all(free(:, ct%node(i)) > 0)) then
+               k = k + 1
+               this%cnode(k) = i
+               this%bdir(:, k) = ct%tangent(:, i)
+               this%limit(k - this%nc) = ct%limit(i)
+            end if
+         end do
+         if (this%m /= this%ncdof) then
+            errmsg = 'static engine: a contact node has a prescribed dof that is neither its normal nor its '// &
+                     'tangential direction'
+            return
+         end if
+      end associate
+
+      ! K_ff from the element matrices, lower triangle (row >= column)
+      nnz = 0
+      do e = 1, model%mesh%nel
+         do a = 1, 8
+            ia = this%dof(comp_of(a), model%mesh%conn(node_of(a), e))
+            if (ia == 0) cycle
+            do b = 1, 8
+               ib = this%dof(comp_of(b), model%mesh%conn(node_of(b), e))
+               if (ib > 0 .and. ib <= ia) nnz = nnz + 1
+            end do
+         end do
+      end do
+      allocate (ti(nnz), tj(nnz), tx(nnz))
+      k = 0
+      do e = 1, model%mesh%nel
+         associate (ke => model%stiff%ke(:, :, model%stiff%shape_of(e)))
+            do a = 1, 8
+               ia = this%dof(comp_of(a), model%mesh%conn(node_of(a), e))
+               if (ia == 0) cycle
+               do b = 1, 8
+                  ib = this%dof(comp_of(b), model%mesh%conn(node_of(b), e))
+                  if (ib > 0 .and. ib <= ia) then
+                     k = k + 1
+                     ti(k) = ia
+                     tj(k) = ib
+                     tx(k) = ke(a, b)
+                  end if
+               end do
+            end do
+         end associate
+      end do
+      if (this%nfree == 0) then
+         errmsg = 'static engine: every dof is prescribed; nothing to solve'
+         return
+      end if
+      allocate (group(this%nfree))
+      do n = 1, this%nnode
+         do c = 1, 2
+            if (this%dof(c, n) > 0) group(this%dof(c, n)) = n
+         end do
+      end do
+      call this%chol%factor(this%nfree, ti, tj, tx, this%ncdof, group, stat, errmsg)
+      deallocate (ti, tj, tx)
+      if (stat == 2 .or. (stat == 0 .and. this%chol%pivot_ratio < singular_pivot_ratio)) then
+         stat = 1
+         errmsg = 'the stiffness matrix with the Dirichlet data is singular (a rigid-body mode is free; '// &
+                  'smallest pivot / diagonal = '//str(this%chol%pivot_ratio)// &
+                  '): the static engine needs Dirichlet data that hold the body without contact'
+         return
+      end if
+      if (stat /= 0) return
+      call system_clock(t1)
+      this%time_factor = real(t1 - t0, wp)/rate
+      t0 = t1
+
+      ! A = P^T B S B^T P from S = L22 L22^T
+      if (this%m > 0) then
+         allocate (l22(this%ncdof, this%ncdof))
+         allocate (order(this%ncdof))
+         call this%chol%trailing(l22, order)
+         call condense(this, model, l22, order, stat, errmsg)
+         if (stat /= 0) return
+      end if
+      allocate (this%u(2, this%nnode), this%fext(2, this%nnode), this%fint(2, this%nnode), &
+                this%fc(2, this%nnode), this%lambda(this%m), this%state(this%m), &
+                this%fn(this%nc), this%ft(this%nc), this%mu(this%nc))
+      this%u = 0
+      this%fext = 0
+      this%fint = 0
+      this%fc = 0
+      this%lambda = 0
+      this%state = -99       ! no state yet: the first increment starts from lambda = 0
+      this%fn = 0
+      this%ft = 0
+      this%mu = 0
+      call system_clock(t1)
+      this%time_condense = real(t1 - t0, wp)/rate
+      stat = 0
+   end subroutine static_setup
+
+   !> S = L22 L22^T (LAPACK dlauum on the index-reversed factor), then A = P^T B S B^T P:
+   !> B rotates each contact node's free dofs to (n, t), P = diag(D^-1, I) for P0 (I for P1).
+   subroutine condense(this, model, l22, order, stat, errmsg)
+      type(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      real(wp), allocatable, intent(inout) :: l22(:, :)
+      integer, intent(in) :: order(:)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      real(wp), allocatable :: s(:, :), w(:, :), dd(:), dl(:), tr(:, :)
+      integer :: nl, i, j, r, c, n, info
+      external :: dlauum, dpttrf, dpttrs
+
+      nl = this%ncdof
+      ! U = J L22 J is upper triangular; U U^T = J L22 L22^T J
+      l22 = l22(nl:1:-1, nl:1:-1)
+      call dlauum('U', nl, l22, nl, info)
+      if (info /= 0) then
+         stat = 2
+         errmsg = 'LAPACK dlauum failed (info = '//str(info)//')'
+         return
+      end if
+      ! back to the trailing dofs' own order: S(order(a), order(b)) = (L22 L22^T)(a, b)
+      allocate (s(nl, nl))
+      do j = 1, nl
+         do i = 1, j
+            s(order(nl + 1 - i), order(nl + 1 - j)) = l22(i, j)
+            s(order(nl + 1 - j), order(nl + 1 - i)) = l22(i, j)
+         end do
+      end do
+      deallocate (l22)
+      ! W = B S (row r of B: bdir(:, r) on the free dofs of its node), then A = W B^T
+      allocate (w(this%m, nl), this%a(this%m, this%m))
+      w = 0
+      do r = 1, this%m
+         n = model%contact%node(this%cnode(r))
+         do c = 1, 2
+            i = this%dof(c, n)
+            if (i > 0) w(r, :) = w(r, :) + this%bdir(c, r)*s(i - (this%nfree - nl), :)
+         end do
+      end do
+      this%a = 0
+      do r = 1, this%m
+         n = model%contact%node(this%cnode(r))
+         do c = 1, 2
+            i = this%dof(c, n)
+            if (i > 0) this%a(:, r) = this%a(:, r) + this%bdir(c, r)*w(:, i - (this%nfree - nl))
+         end do
+      end do
+      deallocate (w, s)
+      if (this%p0) then
+         ! A_nn = D^-1 Shat_nn D^-1, A_nt = D^-1 Shat_nt (D symmetric positive definite tridiagonal)
+         dd = model%contact%dd
+         dl = model%contact%dl
+         call dpttrf(this%nc, dd, dl, info)
+         if (info /= 0) then
+            stat = 2
+            errmsg = 'LAPACK dpttrf failed on D (info = '//str(info)//')'
+            return
+         end if
+         tr = this%a(1:this%nc, :)
+         call dpttrs(this%nc, this%m, dd, dl, tr, this%nc, info)
+         this%a(1:this%nc, :) = tr
+         tr = transpose(this%a(:, 1:this%nc))
+         call dpttrs(this%nc, this%m, dd, dl, tr, this%nc, info)
+         this%a(:, 1:this%nc) = transpose(tr)
+      end if
+      ! exact symmetry
+      this%a = 0.5_wp*(this%a + transpose(this%a))
+      stat = 0
+      errmsg = ''
+   end subroutine condense
+
+   !> y = D x for the contact chain (D symmetric tridiagonal, SPEC section 3).
+   subroutine d_apply(model, x, y)
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: x(:)
+      real(wp), intent(out) :: y(:)
+      integer :: i, nc
+      nc = size(x)
+      y = model%contact%dd*x
+      do i = 1, nc - 1
+         y(i) = y(i) + model%contact%dl(i)*x(i + 1)
+         y(i + 1) = y(i + 1) + model%contact%dl(i)*x(i)
+      end do
+   end subroutine d_apply
+
+   !> One load increment: the loads and prescribed values of time t, friction acting on the
+   !> tangential displacement since the last increment. converged = .false. when the PDAS or the
+   !> threshold fixed point cycles or runs out of iterations (the state is then the last iterate).
+   !> stat /= 0 only on a numerical failure.
+   subroutine static_increment(this, model, t, converged, message, stat, errmsg)
+      class(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: t
+      logical, intent(out) :: converged
+      character(len=:), allocatable, intent(out) :: message
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      real(wp), allocatable :: up(:, :), ku(:, :), f(:), x(:), y0(:), cvec(:), qn(:), psi_ref(:), lim(:), &
+                               uprev(:, :)
+      real(wp) :: cv(model%load%ncurve)
+      integer, allocatable :: mask(:, :)
+      integer :: p, n, c, i, r, iouter, nit, k, itry
+      integer(i8) :: t0, t1, rate
+      logical :: done, pdas_ok
+
+      call system_clock(t0, rate)
+      stat = 0
+      errmsg = ''
+      message = ''
+      converged = .true.
+      uprev = this%u
+      ! loads and prescribed values at t; f = tractions - K u_p on the free dofs
+      call model%load%curve_values(t, cv)
+      allocate (up(2, this%nnode), ku(2, this%nnode))
+      up = 0
+      do p = 1, model%load%npres
+         up(model%load%pcomp(p), model%load%pnode(p)) = cv(model%load%pcurve(p))
+      end do
+      this%fext = 0
+      do p = 1, model%load%ntrac
+         this%fext(model%load%tcomp(p), model%load%tnode(p)) = this%fext(model%load%tcomp(p), model%load%tnode(p)) + &
+                                                               cv(model%load%tcurve(p))*model%load%tweight(p)
+      end do
+      call model%stiff%apply(up, ku)
+      allocate (f(this%nfree), x(this%nfree))
+      do n = 1, this%nnode
+         do c = 1, 2
+            if (this%dof(c, n) > 0) f(this%dof(c, n)) = this%fext(c, n) - ku(c, n)
+         end do
+      end do
+      ! the body's response without contact
+      call this%chol%solve(f, x, stat)
+      if (stat /= 0) then
+         errmsg = 'CHOLMOD solve failed'
+         return
+      end if
+
+      this%fn = 0
+      this%ft = 0
+      this%mu = 0
+      this%fc = 0
+      if (this%m > 0) then
+         ! y0 = (T (q0_n - g), q0_t - psi_ref)
+         allocate (y0(this%m), qn(this%nc), psi_ref(this%nt))
+         do r = 1, this%m
+            n = model%contact%node(this%cnode(r))
+            y0(r) = 0
+            do c = 1, 2
+               if (this%dof(c, n) > 0) y0(r) = y0(r) + this%bdir(c, r)*x(this%dof(c, n))
+            end do
+         end do
+         do r = this%nc + 1, this%m
+            psi_ref(r - this%nc) = dot_product(this%bdir(:, r), uprev(:, model%contact%node(this%cnode(r))))
+         end do
+         qn = y0(1:this%nc) - model%contact%gap
+         if (this%p0) then
+            call d_apply(model, qn, y0(1:this%nc))
+         else
+            y0(1:this%nc) = qn
+         end if
+         y0(this%nc + 1:) = y0(this%nc + 1:) - psi_ref
+         allocate (cvec(this%m))
+         cvec = matmul(this%a, y0)
+         ! thresholds; with tresca_scope = 'contact' a fixed point on them
+         allocate (lim(this%nt), mask(this%nt, max_outer))
+         lim = this%limit
+         done = .false.
+         do iouter = 1, max_outer
+            this%outer_iterations = this%outer_iterations + 1
+            ! a cycle restarts the iteration from 'all in contact, all stuck' with a smaller
+            ! tangential constant (docs/static.md)
+            do itry = 1, size(ct_tries)
+               if (itry > 1) this%state = -99
+               call pdas(this, cvec, lim, ct_tries(itry), nit, pdas_ok, stat, errmsg)
+               this%iterations = this%iterations + nit
+               if (stat /= 0) return
+               if (pdas_ok) exit
+            end do
+            if (.not. pdas_ok) then
+               converged = .false.
+               message = 'the active-set iteration cycled or did not settle in '//str(max_pdas)//' iterations'
+               exit
+            end if
+            call nodal_forces(this, model)
+            if (.not. this%scope_contact) then
+               done = .true.
+               exit
+            end if
+            ! tresca_scope = 'contact': no friction where F_n <= 0 (as contact2d_contact does)
+            do k = 1, this%nt
+               mask(k, iouter) = merge(1, 0, this%fn(this%cnode(this%nc + k)) > 0)
+            end do
+            if (iouter > 1) then
+               if (all(mask(:, iouter) == mask(:, iouter - 1))) then
+                  done = .true.
+                  exit
+               end if
+               do i = 1, iouter - 2
+                  if (all(mask(:, iouter) == mask(:, i))) exit
+               end do
+               if (i <= iouter - 2) then
+                  converged = .false.
+                  message = "the fixed point on the friction thresholds (tresca_scope = 'contact') cycles "// &
+                            '(period '//str(iouter - i)//')'
+                  exit
+               end if
+            end if
+            lim = merge(this%limit, 0.0_wp, mask(:, iouter) == 1)
+         end do
+         if (.not. done .and. converged) then
+            converged = .false.
+            message = 'the fixed point on the friction thresholds did not settle in '//str(max_outer)//' iterations'
+         end if
+         if (.not. pdas_ok) call nodal_forces(this, model)
+      end if
+      call displacement(this, model, f, up, stat)
+      if (stat /= 0) then
+         errmsg = 'CHOLMOD solve failed'
+         return
+      end if
+      ! refine the multipliers of the fixed sets against the full solve (it removes the round-off
+      ! of the condensed operator): y_J(u) should vanish; d lambda_J = (A_JJ - A_JK A_KK^-1 A_KJ) y_J
+      if (this%m > 0 .and. converged) then
+         do k = 1, 2
+            call refine_multipliers(this, model, uprev, stat, errmsg)
+            if (stat /= 0) return
+            call nodal_forces(this, model)
+            call displacement(this, model, f, up, stat)
+            if (stat /= 0) then
+               errmsg = 'CHOLMOD solve failed'
+               return
+            end if
+         end do
+      end if
+      call kkt_residuals(this, model, uprev)
+      call system_clock(t1)
+      this%time_pdas = this%time_pdas + real(t1 - t0, wp)/rate
+   end subroutine static_increment
+
+   !> u = K^-1 (f0 + contact forces) on the free dofs, up on the prescribed ones, with one step
+   !> of iterative refinement against the element-by-element K u; fc and fint follow.
+   subroutine displacement(this, model, f0, up, stat)
+      type(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: f0(:), up(:, :)
+      integer, intent(out) :: stat
+      real(wp) :: f(this%nfree), x(this%nfree)
+      integer :: i, n, c, pass
+      this%fc = 0
+      do i = 1, this%nc
+         n = model%contact%node(i)
+         do c = 1, 2
+            if (this%dof(c, n) > 0) this%fc(c, n) = -this%fn(i)*model%contact%normal(c, i) - &
+                                                     this%ft(i)*model%contact%tangent(c, i)
+         end do
+      end do
+      this%u = up
+      f = f0
+      do pass = 1, 2
+         if (pass == 2) then
+            ! the residual of the first pass: f_ext + F_c - K u on the free dofs
+            do n = 1, this%nnode
+               do c = 1, 2
+                  if (this%dof(c, n) > 0) f(this%dof(c, n)) = this%fext(c, n) + this%fc(c, n) - this%fint(c, n)
+               end do
+            end do
+         else
+            do n = 1, this%nnode
+               do c = 1, 2
+                  if (this%dof(c, n) > 0) f(this%dof(c, n)) = f(this%dof(c, n)) + this%fc(c, n)
+               end do
+            end do
+         end if
+         call this%chol%solve(f, x, stat)
+         if (stat /= 0) return
+         do n = 1, this%nnode
+            do c = 1, 2
+               if (this%dof(c, n) > 0) this%u(c, n) = this%u(c, n) + x(this%dof(c, n))
+            end do
+         end do
+         call model%stiff%apply(this%u, this%fint)
+      end do
+   end subroutine displacement
+
+   !> lambda_J += (A_JJ - A_JK A_KK^-1 A_KJ) y_J(u) on the fixed-displacement set J (active
+   !> normal, stick), y measured on the full displacement u: one step of iterative refinement.
+   subroutine refine_multipliers(this, model, uprev, stat, errmsg)
+      type(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: uprev(:, :)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      real(wp) :: y(this%m), d(this%nc)
+      real(wp), allocatable :: akk(:, :), z(:), e(:), dl(:)
+      integer, allocatable :: jset(:), kset(:)
+      integer :: i, r, nk, info
+      external :: dpotrf, dpotrs
+      stat = 0
+      errmsg = ''
+      do i = 1, this%nc
+         d(i) = dot_product(this%u(:, model%contact%node(i)), model%contact%normal(:, i)) - model%contact%gap(i)
+      end do
+      if (this%p0) then
+         call d_apply(model, d, y(1:this%nc))
+      else
+         y(1:this%nc) = d
+      end if
+      do r = this%nc + 1, this%m
+         i = model%contact%node(this%cnode(r))
+         y(r) = dot_product(this%u(:, i) - uprev(:, i), this%bdir(:, r))
+      end do
+      jset = pack([(r, r=1, this%m)], this%state == 1 .or. this%state == 3)
+      kset = pack([(r, r=1, this%m)], .not. (this%state == 1 .or. this%state == 3))
+      if (size(jset) == 0) return
+      e = y(jset)
+      dl = matmul(this%a(jset, jset), e)
+      nk = size(kset)
+      if (nk > 0) then
+         akk = this%a(kset, kset)
+         z = matmul(this%a(kset, jset), e)
+         call dpotrf('L', nk, akk, nk, info)
+         if (info /= 0) then
+            stat = 2
+            errmsg = 'LAPACK dpotrf failed on the condensed contact matrix (info = '//str(info)//')'
+            return
+         end if
+         call dpotrs('L', nk, 1, akk, nk, z, nk, info)
+         dl = dl - matmul(this%a(jset, kset), z)
+      end if
+      this%lambda(jset) = this%lambda(jset) + dl
+   end subroutine refine_multipliers
+
+   !> Nodal forces from lambda: F_n = T lambda_n (mu for P0), F_t per node.
+   subroutine nodal_forces(this, model)
+      type(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      integer :: r
+      if (this%p0) then
+         this%mu = this%lambda(1:this%nc)
+         call d_apply(model, this%mu, this%fn)
+      else
+         this%fn = this%lambda(1:this%nc)
+         this%mu = 0
+      end if
+      this%ft = 0
+      do r = this%nc + 1, this%m
+         this%ft(this%cnode(r)) = this%lambda(r)
+      end do
+   end subroutine nodal_forces
+
+   !> Primal-dual active set on A (y - y0) + lambda = 0 (cvec = A y0): unknown r is in state
+   !> 1 (normal active: y = 0), 0 (normal inactive: lambda = 0), 3 (stick: y = 0),
+   !> +2 / -2 (slip: lambda = +-lim), 4 (no friction: lambda = 0). The sets follow
+   !> lambda_n = max(0, lambda_n + k y_n), lambda_t = proj(lambda_t + k y_t) with k = A_rr.
+   !> ok = .false. if a set repeats an earlier one (cycle) or max_pdas is reached.
+   subroutine pdas(this, cvec, lim, ct, nit, ok, stat, errmsg)
+      type(static_t), intent(inout) :: this
+      real(wp), intent(in) :: cvec(:), lim(:)
+      real(wp), intent(in) :: ct   !< tangential complementarity constant, a fraction of A_rr
+      integer, intent(out) :: nit
+      logical, intent(out) :: ok
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer, allocatable :: hist(:, :), free_set(:), new_state(:)
+      real(wp), allocatable :: y(:), akk(:, :), rhs(:)
+      integer :: it, r, nk, info, j
+      external :: dpotrf, dpotrs
+
+      stat = 0
+      errmsg = ''
+      ok = .false.
+      allocate (hist(this%m, max_pdas), y(this%m), new_state(this%m))
+      ! start: the previous sets (warm start), else everything in contact and stuck
+      if (this%state(1) == -99) then
+         this%state(1:this%nc) = 1
+         this%state(this%nc + 1:) = 3
+      end if
+      do r = this%nc + 1, this%m
+         if (lim(r - this%nc) <= 0) this%state(r) = 4
+         if (lim(r - this%nc) > 0 .and. this%state(r) == 4) this%state(r) = 3
+      end do
+      nit = 0
+      do it = 1, max_pdas
+         nit = it
+         hist(:, it) = this%state
+         ! known lambda on K (inactive, slip, no friction), y = 0 on J (active, stick)
+         free_set = pack([(r, r=1, this%m)], this%state == 0 .or. abs(this%state) == 2 .or. this%state == 4)
+         do r = 1, this%m
+            select case (this%state(r))
+            case (0, 4); this%lambda(r) = 0
+            case (2); this%lambda(r) = lim(r - this%nc)
+            case (-2); this%lambda(r) = -lim(r - this%nc)
+            end select
+         end do
+         nk = size(free_set)
+         ! A_KK (y_K - y0_K) - A_KJ y0_J = -lambda_K  =>  A_KK y_K = cvec_K - lambda_K
+         y = 0
+         if (nk > 0) then
+            akk = this%a(free_set, free_set)
+            rhs = cvec(free_set) - this%lambda(free_set)
+            call dpotrf('L', nk, akk, nk, info)
+            if (info /= 0) then
+               stat = 2
+               errmsg = 'LAPACK dpotrf failed on the condensed contact matrix (info = '//str(info)//')'
+               return
+            end if
+            call dpotrs('L', nk, 1, akk, nk, rhs, nk, info)
+            y(free_set) = rhs
+         end if
+         ! lambda_J = cvec_J - A_JK y_K
+         do r = 1, this%m
+            if (any(this%state(r) == [1, 3])) then
+               this%lambda(r) = cvec(r) - dot_product(this%a(r, free_set), y(free_set))
+            end if
+         end do
+         call classify(this, this%lambda, y, lim, ct, new_state)
+         if (debug) print '(a,i4,a,6i6)', 'pdas', it, ' active/inactive/stick/slip+/slip-/free', &
+            count(new_state == 1), count(new_state == 0), count(new_state == 3), count(new_state == 2), &
+            count(new_state == -2), count(new_state == 4)
+         if (all(new_state == this%state)) then
+            ok = .true.
+            return
+         end if
+         do j = 1, it - 1
+            if (all(new_state == hist(:, j))) then
+               this%state = new_state
+               return   ! cycling
+            end if
+         end do
+         this%state = new_state
+      end do
+   end subroutine pdas
+
+   !> The sets from (lambda, y): see pdas.
+   subroutine classify(this, lambda, y, lim, ct, state)
+      type(static_t), intent(in) :: this
+      real(wp), intent(in) :: lambda(:), y(:), lim(:), ct
+      integer, intent(out) :: state(:)
+      integer :: r
+      real(wp) :: v
+      do r = 1, this%nc
+         state(r) = merge(1, 0, lambda(r) + this%a(r, r)*y(r) > 0)
+      end do
+      do r = this%nc + 1, this%m
+         if (lim(r - this%nc) <= 0) then
+            state(r) = 4
+         else
+            v = lambda(r) + ct*this%a(r, r)*y(r)
+            if (abs(v) <= lim(r - this%nc)) then
+               state(r) = 3
+            else
+               state(r) = merge(2, -2, v > 0)
+            end if
+         end if
+      end do
+   end subroutine classify
+
+   !> Relative KKT residuals of the state (docs/static.md), from the full displacement u:
+   !> normal feasibility max(d, 0) / max|u| (P0: (D d)_i / w_i); complementarity
+   !> max(|F d|, max(-F, 0) max|u|) / (max F max|u|) per node (P0: mu and (D d)/w per cell);
+   !> friction max(|F_t| - s w, 0) / max(s w) and max|s w |psi| - F_t psi| / (max(s w) max|u|);
+   !> equilibrium ||f_ext + F_c - K u||_inf on the free dofs / max(reaction, f_ext, F_c).
+   subroutine kkt_residuals(this, model, uprev)
+      type(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: uprev(:, :)
+      real(wp) :: umax, d(this%nc), e(this%nc), lam(this%nc), lmax, psi, r, rfree, scale
+      integer :: i, n, c, k
+
+      this%kkt = 0
+      umax = max(maxval(abs(this%u)), tiny(1.0_wp))
+      if (this%nc > 0) then
+         do i = 1, this%nc
+            d(i) = dot_product(this%u(:, model%contact%node(i)), model%contact%normal(:, i)) - model%contact%gap(i)
+         end do
+         if (this%p0) then
+            call d_apply(model, d, e)
+            e = e/model%contact%weight
+            lam = this%mu
+         else
+            e = d
+            lam = this%fn
+         end if
+         lmax = max(maxval(abs(lam)), tiny(1.0_wp))
+         this%kkt(1) = max(maxval(e), 0.0_wp)/umax
+         this%kkt(2) = max(maxval(abs(lam*e))/(lmax*umax), maxval(-lam)/lmax, 0.0_wp)
+         lmax = maxval(this%limit, mask=this%limit > 0)
+         if (this%nt > 0 .and. lmax > 0) then
+            do k = 1, this%nt
+               i = this%cnode(this%nc + k)
+               n = model%contact%node(i)
+               psi = dot_product(this%u(:, n) - uprev(:, n), model%contact%tangent(:, i))
+               associate (ft => this%ft(i), s => this%limit(k))
+                  if (this%scope_contact .and. this%fn(i) <= 0) then
+                     ! no friction on this node: F_t must vanish
+                     this%kkt(3) = max(this%kkt(3), abs(ft)/lmax)
+                  else
+                     this%kkt(3) = max(this%kkt(3), max(abs(ft) - s, 0.0_wp)/lmax, &
+                                       abs(s*abs(psi) - ft*psi)/(lmax*umax))
+                  end if
+               end associate
+            end do
+         end if
+      end if
+      rfree = 0
+      scale = 0
+      do n = 1, this%nnode
+         do c = 1, 2
+            r = this%fext(c, n) + this%fc(c, n) - this%fint(c, n)
+            if (this%dof(c, n) > 0) then
+               rfree = max(rfree, abs(r))
+            else
+               scale = max(scale, abs(r))
+            end if
+            scale = max(scale, abs(this%fext(c, n)), abs(this%fc(c, n)))
+         end do
+      end do
+      this%kkt(4) = merge(rfree/scale, rfree, scale > 0)
+   end subroutine kkt_residuals
+
+   subroutine static_free(this)
+      class(static_t), intent(inout) :: this
+      call this%chol%free()
+   end subroutine static_free
+end module contact2d_static
