@@ -10,6 +10,9 @@ module contact2d_driver
    use contact2d_model, only: model_t, model_build
    use contact2d_explicit, only: explicit_t
    use contact2d_output, only: output_t
+   use contact2d_threads, only: thread_tuner_t
+   use contact2d_omp_env, only: omp_env_passive
+   use contact2d_stiffness, only: omp_min_nodes
    use contact2d_static_run, only: static_run, static_distance
    use contact2d_initial, only: initial_velocity_apply, initial_velocity_warning
    implicit none
@@ -33,9 +36,13 @@ contains
       real(wp) :: residual, t_load_end, omega2_power, timings(4), wall, kin_ratio
       logical :: converged, done, interactive, exists, sampled
       real(wp), allocatable :: extra(:, :)
+      real(wp) :: dt_initial
+      type(thread_tuner_t) :: tuner
+      integer(i8) :: fallback_step
       real(wp) :: static_dist
       logical :: static_converged
 
+      call omp_env_passive()   ! may re-execute the program with OMP_WAIT_POLICY=passive
       call system_clock(clock0, rate)
       static_dist = huge(1.0_wp)
       call cli_parse(cli, stat, errmsg)
@@ -105,15 +112,34 @@ contains
             omega2_power = model%stiff%power_omega2(model%load%free, deck%solver%power_iterations)
          end if
       end if
+      ! solver:dt_limit = 'power' (issue 13): dt from the power-iteration estimate of the true
+      ! limit, with the growing-mode guard; never below the element-bound step
+      if (deck%solver%dt_limit == 'power' .and. deck%solver%dt == 0 .and. omega2_power > 0) then
+         model%dt = max(model%dt, deck%solver%dt_factor*2/sqrt(omega2_power))
+      end if
+      dt_initial = model%dt
+      fallback_step = -1
       call print_time_step(model, omega2_power, deck%solver%power_iterations)
+      if (model%added_mass > 0) then
+         write (output_unit, '(a)') 'mass scaling: '//sci(model%added_mass)//' t added at '//str(model%scaled_nodes)// &
+            ' node(s) ('//sci(model%added_mass/model%body_mass)//' of the body mass) for a stable step of '// &
+            sci(deck%solver%mass_scaling)//' s'
+      end if
 
       call solver%init(model%stiff, model%load, model%dt, model%damping, deck%solver%alpha, &
                        deck%solver%damping_interval)
+      ! the guard watches only a step taken from the power estimate (never a dt the user gave)
+      solver%guard = deck%solver%dt_limit == 'power' .and. deck%solver%dt == 0 .and. &
+                     model%dt > deck%solver%dt_factor*model%dt_critical*(1 + 1.0e-12_wp)
+      solver%guard_after = model%load%end_time()
       if (any(deck%initial%velocity /= 0)) call initial_velocity_apply(solver, model%load%free, deck%initial%velocity)
       call out%open(cli%output, cli%force, deck, model, stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
       call out%file%attr(out%file%id, 'method', 'explicit')
       call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
+      call out%file%attr(out%file%id, 'dt_limit', trim(deck%solver%dt_limit))
+      call out%file%attr(out%file%id, 'added_mass', model%added_mass)
+      call out%file%attr(out%file%id, 'body_mass', model%body_mass)
       if (omega2_power > 0) then
          call out%file%attr(out%file%id, 'omega_max_power', sqrt(omega2_power))
          call out%file%attr(out%file%id, 'dt_stable_estimate', 2/sqrt(omega2_power))
@@ -124,6 +150,7 @@ contains
       call out%file%attr(out%file%id, 'initial_kinetic_energy', solver%initial_kinetic)
       call out%sample(solver, model, 0.0_wp)
 
+      call tuner%init(model%stiff%nnode >= omp_min_nodes)
       call system_clock(clock1)
       timings = 0
       timings(1) = real(clock1 - clock0, wp)/rate
@@ -138,7 +165,7 @@ contains
       if (.not. deck%convergence_test) status = trim(merge('dynamic            ', 'no convergence test', deck%dynamic))
       residual = huge(1.0_wp)
       isnap = 1
-      snap_step = next_snapshot(deck, model%dt, isnap)
+      snap_step = next_snapshot(deck, model%dt, isnap, 0_i8, 0.0_wp)
       associate (hist => int(deck%output%history_interval, i8), check => int(deck%solver%check_interval, i8))
          do while (.not. done)
             nstep = int(min(hist - mod(solver%step, hist), check - mod(solver%step, check), &
@@ -147,11 +174,22 @@ contains
             call solver%advance(model%stiff, model%load, model%contact, nstep)
             call system_clock(clock1)
             t_steps = t_steps + (clock1 - tick)
+            call tuner%update(real(clock1 - tick, wp)/rate, nstep)
+            if (solver%growing) then
+               ! a growing mode: back to the element bound from the next step on
+               model%dt = deck%solver%dt_factor*model%dt_critical
+               call solver%set_dt(model%dt)
+               solver%guard = .false.
+               fallback_step = solver%step
+               write (error_unit, '(a)') program_name//': warning: a growing mode at step '//str(solver%step)// &
+                  ' with dt = '//sci(dt_initial)//' s; the element-bound step '//sci(model%dt)//' s from here on'
+               snap_step = next_snapshot(deck, model%dt, isnap, solver%step, solver%time)
+            end if
             sampled = .false.
             if (solver%step == snap_step) then
                call out%snapshot(solver, model)
                isnap = isnap + 1
-               snap_step = next_snapshot(deck, model%dt, isnap)
+               snap_step = next_snapshot(deck, model%dt, isnap, solver%step, solver%time)
             end if
             if (solver%blown_up) then
                status = 'blow-up'
@@ -204,9 +242,14 @@ contains
       end if
       call system_clock(clock1)
       wall = real(clock1 - clock0, wp)/rate
+      call out%file%attr(out%file%id, 'dt_initial', dt_initial)
+      call out%file%attr(out%file%id, 'dt_fallback_step', int(fallback_step))
       call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
       if (stat /= 0) call fail(2, errmsg)
-      call summary(model, deck, solver, cli%output, converged, status, residual, wall, timings)
+      call summary(model, deck, solver, cli%output, converged, status, residual, wall, timings, dt_initial, fallback_step)
+      if (tuner%active) write (output_unit, '(a)') ' threads             auto: '//str(tuner%nmax)//' on '// &
+         fixed(100*real(tuner%steps(2), wp)/max(1.0_wp, real(sum(tuner%steps), wp)), 1)//' % of the steps, 1 on the rest ('// &
+         str(tuner%switches)//' switches; set OMP_NUM_THREADS to fix the count)'
       if (deck%solver%compare_static .and. static_dist < huge(1.0_wp)) then
          write (output_unit, '(a)') ' static distance     '//sci(static_dist)//' (energy norm ||u - u_static||_K / '// &
             '||u_static||_K'//trim(merge('); static NOT converged', ')                      ', .not. static_converged))
@@ -223,13 +266,16 @@ contains
       end if
    end subroutine driver_main
 
-   !> Step of snapshot k (the first step at or after its time), or huge if there is none.
-   integer(i8) function next_snapshot(deck, dt, k) result(step)
+   !> Step of snapshot k (the first step at or after its time), or huge if there is none; the
+   !> run is at step0, time0 and goes on with dt.
+   integer(i8) function next_snapshot(deck, dt, k, step0, time0) result(step)
       type(deck_t), intent(in) :: deck
-      real(wp), intent(in) :: dt
+      real(wp), intent(in) :: dt, time0
       integer, intent(in) :: k
+      integer(i8), intent(in) :: step0
       step = huge(1_i8)
-      if (k <= deck%output%nsnapshot) step = max(1_i8, ceiling(deck%output%snapshot_times(k)/dt - 1.0e-9_wp, i8))
+      if (k <= deck%output%nsnapshot) step = max(step0 + 1, step0 + ceiling((deck%output%snapshot_times(k) - time0)/dt &
+                                                                            - 1.0e-9_wp, i8))
    end function next_snapshot
 
    !> One line on stderr, exit with the code.
@@ -318,13 +364,14 @@ contains
       end associate
    end subroutine contact_summary
 
-   subroutine summary(model, deck, solver, path, converged, status, residual, wall, timings)
+   subroutine summary(model, deck, solver, path, converged, status, residual, wall, timings, dt_initial, fallback_step)
       type(model_t), intent(in) :: model
       type(deck_t), intent(in) :: deck
       type(explicit_t), intent(in) :: solver
       character(len=*), intent(in) :: path, status
       logical, intent(in) :: converged
-      real(wp), intent(in) :: residual, wall, timings(4)
+      real(wp), intent(in) :: residual, wall, timings(4), dt_initial
+      integer(i8), intent(in) :: fallback_step
       character(len=:), allocatable :: conv
       real(wp) :: rate
       associate (c => model%contact)
@@ -340,7 +387,12 @@ contains
          rate = real(solver%step, wp)*model%mesh%nel/max(timings(2), 1.0e-9_wp)
          write (output_unit, '(a)') repeat('-', 72)
          write (output_unit, '(a)') ' steps               '//str(solver%step)//'   (t = '//sci(solver%time)//' s)'
-         write (output_unit, '(a)') ' dt / dt_critical    '//fixed(model%dt/model%dt_critical, 4)
+         write (output_unit, '(a)') ' dt / dt_critical    '//fixed(model%dt/model%dt_critical, 4)//'   (dt_limit = '// &
+            trim(deck%solver%dt_limit)//')'
+         if (fallback_step >= 0) write (output_unit, '(a)') ' growing mode        at step '//str(fallback_step)// &
+            ': dt '//sci(dt_initial)//' s -> '//sci(model%dt)//' s (element bound)'
+         if (model%added_mass > 0) write (output_unit, '(a)') ' added mass          '//sci(model%added_mass)// &
+            ' t at '//str(model%scaled_nodes)//' node(s) = '//sci(model%added_mass/model%body_mass)//' x body mass'
          if (deck%dynamic) write (output_unit, '(a)') ' run                 dynamic: initial velocity ('// &
             sci(deck%initial%velocity(1))//', '//sci(deck%initial%velocity(2))//') mm/s, no damping, '// &
             trim(merge('stops when converged or at t_end =', 'ends at t_end =                   ', deck%convergence_test))//' '// &

@@ -8,6 +8,7 @@ module contact2d_model
    use contact2d_mesh, only: mesh_t
    use contact2d_material, only: material_t, material_init
    use contact2d_stiffness, only: stiffness_t
+   use contact2d_mass_scaling, only: mass_scale
    use contact2d_loading, only: loading_t
    use contact2d_contact, only: contact_t, contact_config_t
    use contact2d_obstacle_factory, only: obstacle_create
@@ -27,6 +28,10 @@ module contact2d_model
       real(wp) :: dt = 0             !< time step [s]
       real(wp) :: dt_critical = 0    !< 2/omega_max from the element bound [s]
       integer :: damping = damping_auto
+      ! mass scaling (solver:mass_scaling > 0, issue 13)
+      real(wp) :: added_mass = 0     !< total fictitious mass [t]
+      real(wp) :: body_mass = 0      !< physical mass of the body [t]
+      integer :: scaled_nodes = 0    !< nodes that got mass
       type(messages_t) :: warnings
    end type model_t
 
@@ -39,6 +44,7 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       integer :: i, nx, ny, nflip
+      real(wp) :: dt_scaled
 
       if (len_trim(deck%mesh%file) > 0) then
          ! a Gmsh mesh (docs/geometry.md): quads only, oriented, Jacobians checked
@@ -64,6 +70,11 @@ contains
       if (stat /= 0) return
       call model%stiff%init(model%mesh, model%material, stat, errmsg)
       if (stat /= 0) return
+      model%body_mass = sum(model%stiff%mass)
+      dt_scaled = 0
+      if (deck%solver%mass_scaling > 0) then
+         call mass_scale(model%stiff, deck%solver%mass_scaling, model%added_mass, model%scaled_nodes, dt_scaled)
+      end if
 
       call model%load%init(model%mesh%nnode)
       do i = 1, size(deck%dirichlet)
@@ -82,6 +93,9 @@ contains
       end if
 
       model%dt_critical = model%stiff%dt_critical()
+      ! with mass scaling, the bound of the scaled system where it is the larger (both hold:
+      ! added mass only lowers omega_max)
+      model%dt_critical = max(model%dt_critical, dt_scaled)
       if (model%contact%penalty) then
          ! penalty springs k_p w_i at the contact nodes stiffen them: the nodal bound
          ! dt <= 2 / sqrt(omega_max^2 + k_p w_i / m_i) (issue 6)

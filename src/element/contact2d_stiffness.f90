@@ -381,7 +381,7 @@ contains
       real(wp), intent(in), optional :: extra(:, :)
       real(wp) :: omega2
       real(wp), allocatable :: x(:, :), y(:, :)
-      real(wp) :: xmx
+      real(wp) :: xmx, xy, ymy
       integer :: it, i
 
       allocate (x, mold=free)
@@ -394,12 +394,20 @@ contains
       omega2 = 0
       do it = 1, iterations
          call this%apply(x, y)
-         if (present(extra)) y = y + extra*x
-         y = y*free
-         xmx = sum(spread(this%mass, 1, 2)*x*x)
-         omega2 = sum(x*y)/xmx
-         y = y/spread(this%mass, 1, 2)
-         x = y/sqrt(sum(spread(this%mass, 1, 2)*y*y))
+         ! omega2 = x'y / x'Mx with y = free (K + extra) x; then x = M^-1 y / |M^-1 y|_M
+         xmx = 0
+         xy = 0
+         ymy = 0
+         do i = 1, size(x, 2)
+            if (present(extra)) y(:, i) = y(:, i) + extra(:, i)*x(:, i)
+            y(:, i) = y(:, i)*free(:, i)
+            xmx = xmx + this%mass(i)*(x(1, i)**2 + x(2, i)**2)
+            xy = xy + x(1, i)*y(1, i) + x(2, i)*y(2, i)
+            y(:, i) = y(:, i)/this%mass(i)
+            ymy = ymy + this%mass(i)*(y(1, i)**2 + y(2, i)**2)
+         end do
+         omega2 = xy/xmx
+         x = y/sqrt(ymy)
       end do
    end function stiffness_power_omega2
 end module contact2d_stiffness

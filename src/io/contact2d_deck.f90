@@ -105,6 +105,10 @@ module contact2d_deck
       real(wp) :: tol_kinetic = 1.0e-12_wp  !< kinetic / strain energy at convergence
       integer :: check_interval = 10      !< steps between convergence checks
       integer :: power_iterations = 100   !< power iterations for the true omega_max (0: skip)
+      !> 'element': dt from the element bound; 'power': from the power-iteration estimate of the
+      !> true limit, with a growing-mode guard falling back to the element bound (issue 13)
+      character(len=8) :: dt_limit = 'element'
+      real(wp) :: mass_scaling = 0        !< target stable step [s] of mass scaling; 0: off (issue 13)
       character(len=8) :: method = 'explicit'  !< 'explicit' | 'static' (docs/static.md, issue 14)
       integer :: static_increments = 1    !< static load increments along the load curves, >= 1
       logical :: compare_static = .false. !< explicit run: report the energy distance to the static solution
@@ -679,16 +683,17 @@ contains
       type(solver_cfg_t), intent(inout) :: cfg
       integer, intent(inout) :: stat
       character(len=:), allocatable, intent(inout) :: errmsg
-      real(wp) :: dt, dt_factor, t_ramp, t_end, alpha, tol_residual, tol_kinetic
+      real(wp) :: dt, dt_factor, t_ramp, t_end, alpha, tol_residual, tol_kinetic, mass_scaling
       logical :: allow_unstable
       integer :: max_steps, damping_interval, check_interval, power_iterations, ios, i
-      character(len=8) :: damping, method, convergence_test
+      character(len=8) :: damping, dt_limit, method, convergence_test
       integer :: static_increments
       logical :: compare_static
       character(len=256) :: msg
       namelist /solver/ dt, dt_factor, allow_unstable, t_ramp, t_end, max_steps, damping, &
          alpha, damping_interval, tol_residual, tol_kinetic, check_interval, power_iterations, &
-         method, static_increments, compare_static, convergence_test
+         dt_limit, mass_scaling, method, static_increments, compare_static, convergence_test
+      dt_limit = cfg%dt_limit; mass_scaling = cfg%mass_scaling
       method = cfg%method; static_increments = cfg%static_increments; compare_static = cfg%compare_static
       dt = cfg%dt; dt_factor = cfg%dt_factor; allow_unstable = cfg%allow_unstable
       t_ramp = cfg%t_ramp; t_end = cfg%t_end; max_steps = cfg%max_steps
@@ -709,6 +714,7 @@ contains
       cfg%damping = damping; cfg%alpha = alpha; cfg%damping_interval = damping_interval
       cfg%tol_residual = tol_residual; cfg%tol_kinetic = tol_kinetic
       cfg%check_interval = check_interval; cfg%power_iterations = power_iterations
+      cfg%dt_limit = dt_limit; cfg%mass_scaling = mass_scaling
       cfg%method = method; cfg%static_increments = static_increments; cfg%compare_static = compare_static
       cfg%convergence_test = convergence_test
    end subroutine read_solver
@@ -867,6 +873,25 @@ contains
             errmsg = 'solver:power_iterations = '//str(s%power_iterations)//' must be >= 0'
             return
          end if
+         s%dt_limit = lower(s%dt_limit)
+         if (.not. any(s%dt_limit == [character(len=8) :: 'element', 'power'])) then
+            errmsg = "solver:dt_limit = '"//trim(s%dt_limit)//"' is not one of 'element', 'power'"
+            return
+         end if
+         if (s%dt_limit == 'power' .and. s%power_iterations == 0) then
+            errmsg = "solver:dt_limit = 'power' needs solver:power_iterations > 0"
+            return
+         end if
+         if (.not. s%mass_scaling >= 0) then
+            errmsg = 'solver:mass_scaling = '//str(s%mass_scaling)//' must be >= 0 (target time step, s; 0: off)'
+            return
+         end if
+         ! fictitious masses change the dynamics: quasi-static runs (automatic damping) only
+         if (s%mass_scaling > 0 .and. s%damping /= 'auto') then
+            errmsg = "solver:mass_scaling = "//str(s%mass_scaling)//" is refused for a dynamic run (damping = '"// &
+                     trim(s%damping)//"'); it needs damping = 'auto' (quasi-static relaxation)"
+            return
+         end if
          ! the static engine (docs/static.md)
          s%method = lower(s%method)
          if (.not. any(s%method == [character(len=8) :: 'explicit', 'static'])) then
@@ -918,6 +943,13 @@ contains
           (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
          errmsg = "initial:velocity = "//str(deck%initial%velocity(1))//", "//str(deck%initial%velocity(2))// &
                   " has no meaning for the static engine (solver:method = 'static' or compare_static)"
+         return
+      end if
+      ! mass scaling changes the dynamics: refused with an initial velocity (issue 13; the
+      ! damping check above refuses damping = 'none' and 'given')
+      if (any(deck%initial%velocity /= 0) .and. deck%solver%mass_scaling > 0) then
+         errmsg = "solver:mass_scaling = "//str(deck%solver%mass_scaling)//" is refused with initial:velocity = "// &
+                  str(deck%initial%velocity(1))//", "//str(deck%initial%velocity(2))//" (fictitious mass changes the dynamics)"
          return
       end if
 
@@ -1268,7 +1300,8 @@ contains
                 kv('damping_interval', str(s%damping_interval))// &
                 kv('tol_residual', str(s%tol_residual))//kv('tol_kinetic', str(s%tol_kinetic))// &
                 kv('check_interval', str(s%check_interval))// &
-                kv('power_iterations', str(s%power_iterations))//kv('method', q(s%method))// &
+                kv('power_iterations', str(s%power_iterations))//kv('dt_limit', q(s%dt_limit))// &
+                kv('mass_scaling', str(s%mass_scaling))//kv('method', q(s%method))// &
                 kv('static_increments', str(s%static_increments))//kv('compare_static', str(s%compare_static))// &
                 kv('convergence_test', q(s%convergence_test))//'/'//nl
       end associate

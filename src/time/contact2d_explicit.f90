@@ -14,6 +14,7 @@ module contact2d_explicit
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    use contact2d_loading, only: loading_t
    use contact2d_contact, only: contact_t
+   use contact2d_sweep, only: sweep_stencils, sweep_parts, sweep_step
    implicit none
    private
    public :: explicit_t, damping_none, damping_given, damping_auto
@@ -24,6 +25,12 @@ module contact2d_explicit
    real(wp), parameter :: blowup_ratio = 1.0e3_wp
    !> Nodes per block of the node loops (fixed, so sums do not depend on the thread count).
    integer, parameter :: block_size = 1024
+   !> Growing-mode guard: rise factor per step of the alternating energy, rises in a row and
+   !> alternating ratio that mean a fast-growing mode; steps between the checks of the slow
+   !> test and its rises in a row under constant loads.
+   integer, parameter :: guard_interval = 10
+   real(wp), parameter :: guard_factor = 1.05_wp, guard_ratio = 2.0_wp
+   integer, parameter :: guard_rises = 12, guard_kin_rises = 30
 
    !> State and settings of the explicit integrator.
    type :: explicit_t
@@ -38,14 +45,21 @@ module contact2d_explicit
       real(wp), allocatable :: u(:, :)     !< u^n [mm]
       real(wp), allocatable :: v(:, :)     !< v^(n-1/2) [mm/s]
       real(wp), allocatable :: unew(:, :)  !< u~, then u^(n+1) [mm]
+      real(wp), allocatable :: uold(:, :)  !< u^(n-1) while the corrector is pending [mm]
+      !> the corrector of the last step is still to be done (it is fused into the next sweep)
+      logical :: pending = .false.
+      real(wp) :: alpha_prev = 0           !< damping of the last step (pending corrector)
+      real(wp) :: stencils(2, 2, -1:1, -1:1, 3, 3) = 0   !< structured-mesh stencils (sweep)
+      real(wp), allocatable :: rowsum(:, :)  !< per-row sums of the sweep (3, sweep_parts)
       real(wp), allocatable :: fint(:, :)  !< K u^n of the last step [N]
       real(wp), allocatable :: fext(:, :)  !< f_ext(t_n) of the last step [N]
       real(wp), allocatable :: fc(:, :)    !< contact force on the body of the last step [N]
       real(wp), allocatable :: mass(:)     !< lumped mass [t]
       real(wp), allocatable :: minv(:)     !< 1 / lumped mass [1/t]
       real(wp), allocatable :: mdof(:)     !< lumped mass per dof, (2 nnode) [t]
+      real(wp), allocatable :: minvdof(:)  !< 1 / lumped mass per dof, (2 nnode) [1/t]
       integer :: nblock = 0                !< blocks of block_size nodes
-      real(wp), allocatable :: partial(:, :)  !< per-block sums (3, nblock)
+      real(wp), allocatable :: partial(:, :)  !< per-block sums (4, nblock)
       real(wp), allocatable :: cval(:)     !< curve values at t_n
       real(wp), allocatable :: cnext(:)    !< curve values at t_(n+1)
       ! automatic damping: u and K u at the last estimate
@@ -59,12 +73,25 @@ module contact2d_explicit
       real(wp) :: damping_dissipation = 0
       real(wp) :: initial_kinetic = 0      !< 1/2 v^(-1/2) M v^(-1/2), energy put in at t = 0 (issue 12)
       logical :: blown_up = .false.
+      !> sum m (v^(n+1/2) - v^(n-1/2))^2 / sum m (v^(n+1/2))^2 of the last corrector: close to 4
+      !> for a mode that changes sign every step (the one that grows when dt is too long)
+      real(wp) :: alternating = 0
+      real(wp) :: alternating_energy = 0   !< 1/2 sum m (v^(n+1/2) - v^(n-1/2))^2 [mJ]
+      ! growing-mode guard (issue 13, docs/deck.md solver:dt_limit)
+      logical :: guard = .false.           !< watch for a growing mode
+      logical :: growing = .false.         !< a growing mode was detected (advance returned)
+      real(wp) :: guard_after = 0          !< the energy test starts at this time (end of loading) [s]
+      real(wp) :: guard_alt = 0, guard_kin = 0   !< values at the last guard check
+      integer :: guard_rise = 0, guard_kin_rise = 0   !< consecutive rises
+      real(wp) :: time0 = 0                !< time at step0 (dt changes) [s]
+      integer(i8) :: step0 = 0             !< step at the last change of dt
    contains
       procedure :: init => explicit_init
       procedure :: advance => explicit_advance
       procedure :: update_damping => explicit_update_damping
       procedure :: residual => explicit_residual
       procedure :: balance_error => explicit_balance_error
+      procedure :: set_dt => explicit_set_dt
    end type explicit_t
 
 contains
@@ -87,13 +114,16 @@ contains
       this%alpha_next = this%alpha
       this%damping_interval = damping_interval
       allocate (this%u(2, nnode), this%v(2, nnode), this%unew(2, nnode), this%fint(2, nnode), &
-                this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode))
-      this%u = 0; this%v = 0; this%unew = 0; this%fint = 0; this%fext = 0; this%fc = 0
+                this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode), this%uold(2, nnode))
+      this%u = 0; this%v = 0; this%unew = 0; this%fint = 0; this%fext = 0; this%fc = 0; this%uold = 0
+      if (stiff%structured) call sweep_stencils(stiff%ke(:, :, 1), this%stencils)
+      allocate (this%rowsum(4, sweep_parts(stiff)))
       this%mass = stiff%mass
       this%minv = 1/stiff%mass
       this%mdof = reshape(spread(stiff%mass, 1, 2), [2*nnode])
+      this%minvdof = 1/this%mdof
       this%nblock = (nnode + block_size - 1)/block_size
-      allocate (this%partial(3, this%nblock))
+      allocate (this%partial(4, this%nblock))
       allocate (this%cval(load%ncurve), this%cnext(load%ncurve))
       call load%curve_values(0.0_wp, this%cnext)
       if (damping == damping_auto) then
@@ -128,7 +158,10 @@ contains
          a1 = 1 - 0.5_wp*this%alpha*dt
          a2inv = 1/(1 + 0.5_wp*this%alpha*dt)
          c = dt*dt*a2inv
-         call stiff%apply_update(this%u, this%fint, this%v, this%minv, dt*a2inv*a1, c, this%unew)
+         ! one sweep: the corrector of the last step (if pending), K u^n and the predictor
+         call sweep_step(stiff, this%stencils, this%u, this%uold, this%v, this%fint, this%minv, this%mass, &
+                         this%mdof, this%minvdof, dt*a2inv*a1, c, 1/dt, this%pending, this%unew, this%rowsum)
+         if (this%pending) call add_energies(this, this%rowsum, this%alpha_prev, dt)
          ! automatic damping: a new alpha from (u^n, K u^n), used from the next step on
          if (this%damping == damping_auto) then
             if (mod(this%step, int(this%damping_interval, i8)) == 0) call this%update_damping(stiff, load)
@@ -172,43 +205,112 @@ contains
          end do
          this%external_work = this%external_work + work
          this%work_in = this%work_in + abs(work)
-         ! 4b. velocities and energies; u^(n+1) becomes u (the arrays are swapped, not copied)
-         call corrector(this, dt)
-         call move_alloc(this%u, swap)
+         ! 4b. velocities and energies: pending, done in the next sweep (or below, on return);
+         !     u^(n+1) becomes u, u^n becomes uold (the arrays are rotated, not copied)
+         call move_alloc(this%uold, swap)
+         call move_alloc(this%u, this%uold)
          call move_alloc(this%unew, this%u)
          call move_alloc(swap, this%unew)
+         this%pending = .true.
+         this%alpha_prev = this%alpha
          this%step = this%step + 1
-         this%time = real(this%step, wp)*dt
-         ! blow-up guard: runaway kinetic energy or non-finite values
+         this%time = this%time0 + real(this%step - this%step0, wp)*dt
+         ! blow-up guard: runaway kinetic energy or non-finite values (the energies of the
+         ! sweep lag one step)
          if (.not. ieee_is_finite(this%kinetic) .or. &
              this%kinetic > blowup_ratio*max(this%work_in, tiny(1.0_wp))) then
             this%blown_up = .true.
-            return
+            exit
+         end if
+         if (this%guard) then
+            call guard_check(this)
+            if (this%growing) exit
          end if
       end do
+      ! on return the state is complete: v^(n+1/2) and the energies of the last step
+      if (this%pending) call corrector(this, dt)
+      if (.not. ieee_is_finite(this%kinetic) .or. &
+          this%kinetic > blowup_ratio*max(this%work_in, tiny(1.0_wp))) this%blown_up = .true.
    end subroutine explicit_advance
 
 
-   !> v^(n+1/2) = (u^(n+1) - u^n)/dt; kinetic, strain and damping energies.
+   !> Growing-mode guard, every step: a mode above the stability limit changes sign every step
+   !> and grows geometrically, so its alternating energy rises at every step (guard_rises in a
+   !> row by guard_factor or more) and soon dominates the kinetic energy (alternating ratio
+   !> above guard_ratio; 4 for a pure sign-changing mode, near 0 for smooth motion); once the loads are constant and the damping takes energy out of
+   !> every mode, a slowly growing mode shows as alternating energy that rises at every check
+   !> of guard_interval steps (guard_kin_rises in a row).
+   subroutine guard_check(this)
+      type(explicit_t), intent(inout) :: this
+      if (this%alternating_energy > guard_factor*this%guard_alt .and. this%guard_alt > 0) then
+         this%guard_rise = this%guard_rise + 1
+      else
+         this%guard_rise = 0
+      end if
+      this%guard_alt = this%alternating_energy
+      if (mod(this%step, int(guard_interval, i8)) == 0) then
+         if (this%time > this%guard_after .and. this%alternating_energy > this%guard_kin .and. this%guard_kin > 0) then
+            this%guard_kin_rise = this%guard_kin_rise + 1
+         else
+            this%guard_kin_rise = 0
+         end if
+         this%guard_kin = this%alternating_energy
+      end if
+      this%growing = (this%guard_rise >= guard_rises .and. this%alternating > guard_ratio) .or. &
+                     this%guard_kin_rise >= guard_kin_rises
+   end subroutine guard_check
+
+   !> A new time step from the next step on (the growing-mode fallback); the guard is reset.
+   subroutine explicit_set_dt(this, dt)
+      class(explicit_t), intent(inout) :: this
+      real(wp), intent(in) :: dt
+      this%time0 = this%time
+      this%step0 = this%step
+      this%dt = dt
+      this%alpha_next = min(this%alpha_next, 2/dt)
+      this%growing = .false.
+      this%guard_rise = 0
+      this%guard_kin_rise = 0
+   end subroutine explicit_set_dt
+
+   !> The pending corrector on its own (u is u^(n+1), uold u^n): v^(n+1/2) = (u^(n+1) - u^n)/dt;
+   !> kinetic, strain and damping energies.
    subroutine corrector(this, dt)
       type(explicit_t), intent(inout) :: this
       real(wp), intent(in) :: dt
-      real(wp) :: ekin, edamp, estrain
-      integer :: b
-      call corrector_blocks(2*this%nnode, this%nblock, dt, this%unew, this%u, this%fint, this%mdof, &
+      call corrector_blocks(2*this%nnode, this%nblock, dt, this%u, this%uold, this%fint, this%mdof, &
                             this%v, this%partial)
+      call add_energies(this, this%partial, this%alpha_prev, dt)
+   end subroutine corrector
+
+   !> Energies of the corrector from its partial sums (m v^2, m vbar^2, u . K u), added in order.
+   subroutine add_energies(this, partial, alpha, dt)
+      type(explicit_t), intent(inout) :: this
+      real(wp), intent(in) :: partial(:, :), alpha, dt
+      real(wp) :: ekin, edamp, estrain, ealt
+      integer :: b
       ekin = 0
       edamp = 0
       estrain = 0
-      do b = 1, this%nblock
-         ekin = ekin + this%partial(1, b)
-         edamp = edamp + this%partial(2, b)
-         estrain = estrain + this%partial(3, b)
+      ealt = 0
+      do b = 1, size(partial, 2)
+         ekin = ekin + partial(1, b)
+         edamp = edamp + partial(2, b)
+         estrain = estrain + partial(3, b)
+         ealt = ealt + partial(4, b)
       end do
+      ! (not merge: both of its arguments are evaluated, and 0/0 traps in Debug builds)
+      if (ekin > 0) then
+         this%alternating = ealt/ekin
+      else
+         this%alternating = 0
+      end if
+      this%alternating_energy = 0.5_wp*ealt
       this%kinetic = 0.5_wp*ekin
       this%strain = 0.5_wp*estrain
-      this%damping_dissipation = this%damping_dissipation + this%alpha*dt*edamp
-   end subroutine corrector
+      this%damping_dissipation = this%damping_dissipation + alpha*dt*edamp
+      this%pending = .false.
+   end subroutine add_energies
 
    !> The corrector on the flattened dofs, block by block. Within a block the sums are vector
    !> reductions (OpenMP simd: their order is fixed by the compiled code) and the blocks are
@@ -218,25 +320,27 @@ contains
       real(wp), intent(in) :: dt
       real(wp), intent(in) :: unew(ndof), u(ndof), fint(ndof), mdof(ndof)
       real(wp), intent(inout) :: v(ndof)
-      real(wp), intent(out) :: partial(3, nblock)
+      real(wp), intent(out) :: partial(4, nblock)
       integer :: b, d
-      real(wp) :: rdt, vn, vb, ek, ed, es
+      real(wp) :: rdt, vn, vb, ek, ed, es, ea
       rdt = 1/dt
-      !$omp parallel do schedule(static) private(d, vn, vb, ek, ed, es) if(ndof >= 2*omp_min_nodes)
+      !$omp parallel do schedule(static) private(d, vn, vb, ek, ed, es, ea) if(ndof >= 2*omp_min_nodes)
       do b = 1, nblock
          ek = 0
          ed = 0
          es = 0
-         !$omp simd private(vn, vb) reduction(+:ek, ed, es)
+         ea = 0
+         !$omp simd private(vn, vb) reduction(+:ek, ed, es, ea)
          do d = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
             vn = (unew(d) - u(d))*rdt
             vb = 0.5_wp*(vn + v(d))
             ek = ek + mdof(d)*vn*vn
             ed = ed + mdof(d)*vb*vb
             es = es + unew(d)*fint(d)
+            ea = ea + mdof(d)*(vn - v(d))**2
             v(d) = vn
          end do
-         partial(:, b) = [ek, ed, es]
+         partial(:, b) = [ek, ed, es, ea]
       end do
       !$omp end parallel do
    end subroutine corrector_blocks
@@ -295,7 +399,7 @@ contains
       integer, intent(in) :: ndof, nblock
       real(wp), intent(in) :: u(ndof), fint(ndof), free(ndof), mdof(ndof)
       real(wp), intent(inout) :: u_mark(ndof), f_mark(ndof)
-      real(wp), intent(inout) :: partial(3, nblock)
+      real(wp), intent(inout) :: partial(4, nblock)
       integer :: b, i
       real(wp) :: du, num, den
       !$omp parallel do schedule(static) private(i, du, num, den) if(ndof >= 2*omp_min_nodes)

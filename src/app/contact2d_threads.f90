@@ -1,0 +1,94 @@
+!> Threads that never hurt (issue 13, docs/performance.md "Threads"): the run measures its own
+!> time per step with one thread and with the full team and keeps the faster, probing the other
+!> now and then, so a busy core (another process) sends it to one thread and an idle machine
+!> back to two. Results do not depend on the choice: every sum has a fixed order (per-row and
+!> per-block partial sums), so any thread count gives the same bits.
+!>
+!> Active only when the user did not set OMP_NUM_THREADS (then the team is the user's).
+module contact2d_threads
+   use contact2d_kinds, only: wp
+   use omp_lib, only: omp_get_max_threads, omp_set_num_threads
+   implicit none
+   private
+   public :: thread_tuner_t
+
+   !> Chunks (calls of the step loop) between probes of the other thread count, chunks per probe,
+   !> and the weight of a new measurement in the running estimate.
+   integer, parameter :: probe_every = 40, probe_chunks = 3
+   real(wp), parameter :: weight = 0.3_wp
+
+   type :: thread_tuner_t
+      logical :: active = .false.
+      integer :: nmax = 1                !< the full team
+      integer :: current = 1             !< threads in use
+      real(wp) :: per_step(2) = 0        !< running seconds per step: (1) one thread, (2) nmax
+      integer :: chunks = 0              !< chunks since the last decision
+      integer :: probing = 0             !< chunks left in a probe of the other count
+      integer :: switches = 0            !< changes of the thread count
+      integer(8) :: steps(2) = 0         !< steps run with one thread and with nmax
+   contains
+      procedure :: init => tuner_init
+      procedure :: update => tuner_update
+   end type thread_tuner_t
+
+contains
+
+   !> Active if OMP_NUM_THREADS is unset, the machine has more than one thread and the mesh is
+   !> large enough for the kernels to go parallel.
+   subroutine tuner_init(this, parallel_mesh)
+      class(thread_tuner_t), intent(out) :: this
+      logical, intent(in) :: parallel_mesh
+      integer :: length, status
+      call get_environment_variable('OMP_NUM_THREADS', length=length, status=status)
+      this%nmax = omp_get_max_threads()
+      this%current = this%nmax
+      this%active = status /= 0 .and. this%nmax > 1 .and. parallel_mesh
+   end subroutine tuner_init
+
+   !> After a chunk of nsteps steps that took seconds: update the estimate of the count in use,
+   !> then keep, probe or switch.
+   subroutine tuner_update(this, seconds, nsteps)
+      class(thread_tuner_t), intent(inout) :: this
+      real(wp), intent(in) :: seconds
+      integer, intent(in) :: nsteps
+      integer :: k, best
+      if (nsteps <= 0) return
+      k = merge(1, 2, this%current == 1)
+      this%steps(k) = this%steps(k) + nsteps
+      if (.not. this%active) return
+      this%chunks = this%chunks + 1
+      if (this%probing == probe_chunks) then
+         ! the first chunk after a switch wakes the threads: not counted, the estimate restarts
+         this%per_step(k) = 0
+      else if (this%per_step(k) == 0) then
+         this%per_step(k) = seconds/nsteps
+      else
+         this%per_step(k) = (1 - weight)*this%per_step(k) + weight*seconds/nsteps
+      end if
+      if (this%probing > 0) then
+         this%probing = this%probing - 1
+         if (this%probing > 0) return
+         ! probe over: the faster of the two
+         best = minloc(this%per_step, dim=1)
+         call use_count(this, merge(1, this%nmax, best == 1))
+         this%chunks = 0
+         return
+      end if
+      ! the first probe soon (both estimates), then every probe_every chunks
+      if ((this%per_step(3 - k) == 0 .and. this%chunks >= 4) .or. this%chunks >= probe_every) then
+         call use_count(this, merge(this%nmax, 1, this%current == 1))
+         this%probing = probe_chunks
+         this%chunks = 0
+      end if
+   end subroutine tuner_update
+
+   subroutine use_count(this, n)
+      type(thread_tuner_t), intent(inout) :: this
+      integer, intent(in) :: n
+      if (n /= this%current) then
+         this%switches = this%switches + 1
+         this%current = n
+         call omp_set_num_threads(n)
+      end if
+   end subroutine use_count
+end module contact2d_threads
