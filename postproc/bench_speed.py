@@ -27,8 +27,10 @@ Issue 13 figures (each section can be chosen with --sections):
            again: the ratios default / one thread (target <= 1.3 under load) and one / default
            idle (target >= 1.9 at k = 5-6);
   static   the built-in static engine (`contact2d DECK --static`) beside the explicit end state
-           when the binary has it, else n/a; the graded Hertz mesh (geometry issue): n/a until
-           it exists.
+           when the binary has it, else n/a;
+  general  (issue 10) the price of the general (Gmsh) path: ns per element-step on the Hertz Gmsh
+           mesh (inputs/hertz_indenter_p1.nml, level 1) against a structured mesh of the same
+           size, one thread, interleaved runs, medians.
 """
 import argparse
 import json
@@ -109,6 +111,47 @@ def getfem_time(src, out, level, friction, repeats):
             walls.append(float(r.attrs["wall_seconds"]))
         ref.unlink()
     return statistics.median(walls), statistics.median(procs), None
+
+
+def general_path(exe, out, repeats, level=1):
+    """ns per element-step of the step loop (1 thread, fixed steps, medians of interleaved runs) on
+    the Hertz Gmsh mesh (inputs/hertz_indenter_p1.nml at `level`: general block-CSR path, one
+    matrix per element) and on a built-in structured mesh of about as many elements (the paper
+    deck with nx x ny set accordingly: structured stencil), and their ratio (issue 10)."""
+    hertz_deck = ROOT / "inputs" / "hertz_indenter_p1.nml"
+    common = {"solver:t_end": 1.0, "solver:tol_residual": 1e-300, "solver:power_iterations": 0,
+              "output:xdmf": False}
+    probe = out / "general_probe.h5"
+    if run(exe, hertz_deck, probe, {"mesh:level": level, "solver:max_steps": 1, **common}).returncode != 0:
+        sys.exit("general-path probe run failed")
+    with Run(probe) as r:
+        nel = int(r.attrs["element_count"])
+    probe.unlink()
+    ny = max(1, int(round(np.sqrt(nel * 3 / 13))))
+    nx = max(1, int(round(nel / ny)))
+    steps = max(200, int(3e8 / nel))
+    ns = {"gmsh": [], "structured": []}
+    for i in range(repeats):
+        for kind in ("gmsh", "structured"):
+            h5 = out / f"general_{kind}_{i}.h5"
+            if kind == "gmsh":
+                res = run(exe, hertz_deck, h5, {"mesh:level": level, "solver:max_steps": steps,
+                                                "output:history_interval": steps, **common}, threads=1)
+            else:
+                res = run(exe, DECK, h5, {"mesh:level": 0, "mesh:nx": nx, "mesh:ny": ny, "solver:max_steps": steps,
+                                          "output:history_interval": steps, **common}, threads=1)
+            if res.returncode != 0:
+                sys.exit(f"general-path run failed: {res.stderr}")
+            with Run(h5) as r:
+                ns[kind].append(1e9 * float(r.attrs["time_steps_seconds"])
+                                / (int(r.attrs["steps"]) * int(r.attrs["element_count"])))
+            h5.unlink()
+    g, s_ = statistics.median(ns["gmsh"]), statistics.median(ns["structured"])
+    print(f"\ngeneral path (issue 10), 1 thread, {steps} steps, median of {repeats}:")
+    print(f"  Hertz Gmsh mesh (level {level}, {nel} elements): {g:.2f} ns per element-step")
+    print(f"  structured {nx} x {ny} = {nx * ny} elements:        {s_:.2f} ns per element-step")
+    print(f"  ratio general / structured: {g / s_:.2f}")
+    return {"elements": nel, "ns_gmsh": g, "ns_structured": s_, "ratio": g / s_}
 
 
 def timed(exe, level, sets=None, env_threads="1", extra_env=None, out=None, name="x"):
@@ -247,8 +290,8 @@ def section_static(exe, out, levels, threads):
         else:
             line += ", static n/a (this binary has no --static)"
         print(line, flush=True)
-    print("  graded Hertz mesh (geometry issue): n/a - steps with/without mass scaling and ns per element-step "
-          "on the general path are not measured until the mesh exists", flush=True)
+    print("  graded Hertz mesh (issue 10): ns per element-step on the general path in the 'general' section; "
+          "steps with/without mass scaling on it are not measured here yet", flush=True)
 
 
 def main():
@@ -258,8 +301,8 @@ def main():
     ap.add_argument("--repeats", type=int, default=7, help="runs per timing (median; default 7)")
     ap.add_argument("--out", default="study/bench", help="work directory")
     ap.add_argument("--no-getfem", action="store_true", help="skip the GetFEM reference")
-    ap.add_argument("--sections", default="issue5,base,steps,threads,static",
-                    help="comma list of issue5, base, steps, threads, static (default all)")
+    ap.add_argument("--sections", default="issue5,base,steps,threads,static,general",
+                    help="comma list of issue5, base, steps, threads, static, general (default all)")
     ap.add_argument("--base-exe", help="the previous commit's contact2d, for the base section")
     ap.add_argument("--thread-levels", default="5", help="levels of the threads section (default 5)")
     args = ap.parse_args()
@@ -276,6 +319,8 @@ def main():
         section_threads(exe, out, parse_levels(args.thread_levels), args.repeats)
     if "static" in sections:
         section_static(exe, out, levels, "1")
+    if "general" in sections:
+        general_path(exe, out, args.repeats)
     if "issue5" not in sections:
         return
 

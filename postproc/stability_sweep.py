@@ -2,8 +2,8 @@
 """Stability sweep: where does each method stop being stable? (issue 6)
 
 Runs the paper scene (SPEC section 7) undamped over a fixed simulated time for dt/dt_critical
-from 0.5 to 1.4, for the elastic body (no contact), P1 and P0 contact, frictionless and Tresca,
-and the penalty method, and records whether each run stays bounded: exit status (the blow-up
+from 0.5 to 1.4, for the elastic body (no contact), P1 and P0 contact, frictionless, Tresca and
+Coulomb (mu = 0.3, issue 11), and the penalty method, and records whether each run stays bounded: exit status (the blow-up
 guard stops a run whose kinetic energy exceeds 1000 x the work put in), the largest kinetic
 energy over the largest external work, and max |u|. Writes stability.csv and stability.png.
 
@@ -30,6 +30,10 @@ METHODS = {
     "P1 Tresca": ("baillet_sassi_2002_p1.nml", {}, False),
     "P0 frictionless": ("baillet_sassi_2002_p0.nml", {"contact:friction": "frictionless", "contact:threshold": 0.0}, False),
     "P0 Tresca": ("baillet_sassi_2002_p0.nml", {}, False),
+    "P1 Coulomb mu=0.3": ("baillet_sassi_2002_p1.nml", {"contact:friction": "coulomb", "contact:threshold": 0.0,
+                                                       "contact:friction_coefficient": 0.3}, False),
+    "P0 Coulomb mu=0.3": ("baillet_sassi_2002_p0.nml", {"contact:friction": "coulomb", "contact:threshold": 0.0,
+                                                       "contact:friction_coefficient": 0.3}, False),
     "penalty k_p=1e6": ("baillet_sassi_2002_p1.nml", {"contact:method": "penalty", "contact:penalty_stiffness": 1.0e6,
                                                      "contact:friction": "frictionless", "contact:threshold": 0.0}, False),
 }
@@ -43,6 +47,7 @@ def main():
     ap.add_argument("--ratios", default="0.5:1.4:0.05", help="dt/dt_critical as start:stop:step")
     ap.add_argument("--out", default="study/stability", help="output directory")
     ap.add_argument("--reuse", action="store_true", help="keep finished runs")
+    ap.add_argument("--methods", help="comma-separated subset of the method names (default: all)")
     args = ap.parse_args()
 
     exe = find_exe(args.exe)
@@ -51,8 +56,15 @@ def main():
     a, b, s = (float(x) for x in args.ratios.split(":"))
     ratios = np.round(np.arange(a, b + s / 2, s), 4)
 
+    methods = METHODS
+    if args.methods:
+        wanted = [m.strip() for m in args.methods.split(",")]
+        unknown = [m for m in wanted if m not in METHODS]
+        if unknown:
+            sys.exit("unknown method(s) %s; valid: %s" % (", ".join(unknown), ", ".join(METHODS)))
+        methods = {m: METHODS[m] for m in wanted}
     rows = []
-    for name, (deck, sets, strip) in METHODS.items():
+    for name, (deck, sets, strip) in methods.items():
         deck_path = ROOT / "inputs" / deck
         if strip:
             deck_path = out / ("elastic_" + deck)
@@ -88,7 +100,7 @@ def main():
         w.writerows(rows)
     print(f"wrote {csv_path}")
     print("\nlargest bounded dt/dt_critical and power-iteration limit per method:")
-    for name in METHODS:
+    for name in methods:
         rr = [r for r in rows if r["method"] == name]
         ok = [r["ratio"] for r in rr if r["bounded"]]
         print(f"  {name:18s} last bounded {max(ok) if ok else float('nan'):.2f}   "

@@ -94,7 +94,12 @@ contains
       do i = 1, model%warnings%n
          write (error_unit, '(a)') program_name//': warning: '//trim(model%warnings%items(i))
       end do
-      write (output_unit, '(a)') 'mesh '//str(model%mesh%nx)//' x '//str(model%mesh%ny)//' = '// &
+      if (model%mesh%nx > 0) then
+         errmsg = str(model%mesh%nx)//' x '//str(model%mesh%ny)//' ='
+      else
+         errmsg = 'from '//trim(deck%mesh%file)//':'
+      end if
+      write (output_unit, '(a)') 'mesh '//errmsg//' '// &
          str(model%mesh%nel)//' Q1 elements, '//str(model%mesh%nnode)//' nodes, '// &
          str(model%stiff%nshape)//' distinct element matrix(es)'
       if (deck%solver%method == 'static') then
@@ -122,7 +127,7 @@ contains
             extra = 0
             do i = 1, model%contact%nc
                extra(:, model%contact%node(i)) = model%contact%penalty_stiffness*model%contact%weight(i)* &
-                                                  model%contact%normal**2
+                                                  model%contact%normal(:, i)**2
             end do
             omega2_power = model%stiff%power_omega2(model%load%free, deck%solver%power_iterations, extra)
          else

@@ -5,13 +5,15 @@ module contact2d_model
    use contact2d_strings, only: str
    use contact2d_checks, only: check_positive
    use contact2d_messages, only: messages_t
-   use contact2d_deck, only: deck_t, edge_load_cfg_t, edge_id
+   use contact2d_deck, only: deck_t, edge_load_cfg_t, edge_id, unset
    use contact2d_mesh, only: mesh_t
    use contact2d_material, only: material_t, material_init
    use contact2d_stiffness, only: stiffness_t
    use contact2d_mass_scaling, only: mass_scale
    use contact2d_loading, only: loading_t
-   use contact2d_contact, only: contact_t
+   use contact2d_contact, only: contact_t, contact_config_t
+   use contact2d_obstacle_factory, only: obstacle_create
+   use contact2d_gmsh, only: gmsh_read
    use contact2d_explicit, only: damping_none, damping_given, damping_auto
    implicit none
    private
@@ -42,15 +44,31 @@ contains
       type(model_t), intent(out) :: model
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      integer :: i, nx, ny
+      integer :: i, nx, ny, nflip
       !> outward normals of the sides bottom, right, top, left
       real(wp), parameter :: outward(2, 4) = reshape([0.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
                                                       -1.0_wp, 0.0_wp], [2, 4])
       real(wp) :: dt_scaled
 
-      nx = deck%mesh%nx*2**deck%mesh%level
-      ny = deck%mesh%ny*2**deck%mesh%level
-      call model%mesh%init_rectangle(deck%mesh%lx, deck%mesh%ly, nx, ny)
+      if (len_trim(deck%mesh%file) > 0) then
+         ! a Gmsh mesh (docs/geometry.md): quads only, oriented, Jacobians checked
+         call gmsh_read(beside(deck%path, trim(deck%mesh%file)), deck%mesh%level, model%mesh, stat, errmsg)
+         if (stat /= 0) then
+            errmsg = deck%path//': '//errmsg
+            return
+         end if
+         call model%mesh%orient(nflip, stat, errmsg)
+         if (stat /= 0) then
+            errmsg = deck%path//": mesh:file = '"//trim(deck%mesh%file)//"': "//errmsg
+            return
+         end if
+         if (nflip > 0) call model%warnings%add('mesh: '//str(nflip)//' clockwise element(s) of '// &
+                                                trim(deck%mesh%file)//' reoriented counter-clockwise')
+      else
+         nx = deck%mesh%nx*2**deck%mesh%level
+         ny = deck%mesh%ny*2**deck%mesh%level
+         call model%mesh%init_rectangle(deck%mesh%lx, deck%mesh%ly, nx, ny)
+      end if
       call material_init(model%material, deck%material%young, deck%material%poisson, &
                          deck%material%density, stat, errmsg)
       if (stat /= 0) return
@@ -126,20 +144,61 @@ contains
    contains
       subroutine build_contact()
          integer, allocatable :: nodes(:)
+         type(contact_config_t) :: cfg
+         integer :: g
+         real(wp) :: d1, d2
          associate (c => deck%contact)
-            call model%mesh%select_nodes(edge_id(c%edge), [c%xmin, c%xmax, c%ymin, c%ymax], nodes)
-            if (c%direction == 'cw') nodes = nodes(size(nodes):1:-1)
-            call model%contact%init(nodes, model%mesh%x, model%load%free, model%stiff%mass, &
-                                    c%obstacle_point, c%obstacle_normal, c%origin, c%multiplier, &
-                                    c%friction, c%threshold, c%threshold_abscissa(1:c%npoints), &
-                                    c%threshold_values(1:c%npoints), c%tresca_scope, c%method, &
-                                    c%penalty_stiffness, model%warnings, stat, errmsg)
-            ! the obstacle normal nu points from the obstacle into the body, so against the
-            ! candidate side's outward normal; pointing away, no node can ever touch: warn
-            if (stat == 0 .and. dot_product(c%obstacle_normal, outward(:, edge_id(c%edge))) > 0) then
-               call model%warnings%add('contact:obstacle_normal = ('//str(c%obstacle_normal(1))//', '// &
-                  str(c%obstacle_normal(2))//") points away from the body at edge '"//trim(c%edge)// &
-                  "' (it must point from the obstacle into the body): no node can touch the obstacle")
+            if (len_trim(c%boundary) > 0) then
+               ! Gamma_c: the chain of boundary edges of the named group (docs/geometry.md)
+               g = model%mesh%group_index(c%boundary)
+               if (g == 0) then
+                  stat = 1
+                  errmsg = deck%path//": contact:boundary = '"//trim(c%boundary)//"' is not a physical curve of "// &
+                           trim(deck%mesh%file)//'; it has '//model%mesh%group_list()
+                  return
+               end if
+               call model%mesh%group_chain(g, [c%xmin, c%xmax, c%ymin, c%ymax], c%direction == 'cw', nodes, &
+                                           stat, errmsg)
+               if (stat /= 0) then
+                  errmsg = deck%path//": contact:boundary = '"//trim(c%boundary)//"' "//errmsg
+                  return
+               end if
+               ! with an origin, the chain starts at its end nearer to O
+               if (all(c%origin /= unset)) then
+                  d1 = norm2(model%mesh%x(:, nodes(1)) - c%origin)
+                  d2 = norm2(model%mesh%x(:, nodes(size(nodes))) - c%origin)
+                  if (d2 < d1) nodes = nodes(size(nodes):1:-1)
+               end if
+            else
+               call model%mesh%select_nodes(edge_id(c%edge), [c%xmin, c%xmax, c%ymin, c%ymax], nodes)
+               if (c%direction == 'cw') nodes = nodes(size(nodes):1:-1)
+            end if
+            call obstacle_create(c%obstacle, c%obstacle_point, c%obstacle_normal, c%obstacle_center, &
+                                 c%obstacle_radius, c%obstacle_side, cfg%obstacle, stat, errmsg)
+            if (stat /= 0) then
+               errmsg = deck%path//': '//errmsg
+               return
+            end if
+            cfg%origin = c%origin
+            cfg%multiplier = c%multiplier
+            cfg%friction = c%friction
+            cfg%friction_coefficient = c%friction_coefficient
+            cfg%threshold = c%threshold
+            cfg%profile_s = c%threshold_abscissa(1:c%npoints)
+            cfg%profile_values = c%threshold_values(1:c%npoints)
+            cfg%tresca_scope = c%tresca_scope
+            cfg%method = c%method
+            cfg%penalty_stiffness = c%penalty_stiffness
+            call model%contact%init(cfg, nodes, model%mesh%x, model%load%free, model%stiff%mass, &
+                                    model%warnings, stat, errmsg)
+            ! a plane whose normal nu (from the obstacle into the body) points along the built-in
+            ! edge's outward normal: no node can ever touch, warn (issue 9)
+            if (stat == 0 .and. len_trim(c%boundary) == 0 .and. c%obstacle == 'plane') then
+               if (dot_product(c%obstacle_normal, outward(:, edge_id(c%edge))) > 0) then
+                  call model%warnings%add('contact:obstacle_normal = ('//str(c%obstacle_normal(1))//', '// &
+                     str(c%obstacle_normal(2))//") points away from the body at edge '"//trim(c%edge)// &
+                     "' (it must point from the obstacle into the body): no node can touch the obstacle")
+               end if
             end if
          end associate
          if (stat /= 0) errmsg = deck%path//': '//errmsg
@@ -150,15 +209,32 @@ contains
          character(len=*), intent(in) :: group
          integer, intent(in) :: k
          integer, allocatable :: nodes(:), seg(:, :)
-         integer :: id, comp, conflict
+         integer :: id, comp, conflict, g, interior
          character(len=:), allocatable :: where
 
          where = deck%path//':'//str(cfg%line)//': &'//group//' (#'//str(k)//'): '
-         call model%mesh%select_nodes(edge_id(cfg%edge), [cfg%xmin, cfg%xmax, cfg%ymin, cfg%ymax], nodes)
-         if (size(nodes) == 0) then
-            stat = 1
-            errmsg = where//"the selection (edge = '"//trim(cfg%edge)//"' and its range) holds no node"
-            return
+         interior = 0
+         if (len_trim(cfg%boundary) > 0) then
+            g = model%mesh%group_index(cfg%boundary)
+            if (g == 0) then
+               stat = 1
+               errmsg = where//"boundary = '"//trim(cfg%boundary)//"' is not a physical curve of "// &
+                        trim(deck%mesh%file)//'; it has '//model%mesh%group_list()
+               return
+            end if
+            call model%mesh%select_group(g, [cfg%xmin, cfg%xmax, cfg%ymin, cfg%ymax], nodes, seg, interior)
+            if (size(nodes) == 0) then
+               stat = 1
+               errmsg = where//"the selection (boundary = '"//trim(cfg%boundary)//"' and its range) holds no node"
+               return
+            end if
+         else
+            call model%mesh%select_nodes(edge_id(cfg%edge), [cfg%xmin, cfg%xmax, cfg%ymin, cfg%ymax], nodes)
+            if (size(nodes) == 0) then
+               stat = 1
+               errmsg = where//"the selection (edge = '"//trim(cfg%edge)//"' and its range) holds no node"
+               return
+            end if
          end if
          comp = merge(1, 2, cfg%component == 'x')
          id = model%load%add_curve(cfg%times(1:cfg%nstage), cfg%values(1:cfg%nstage))
@@ -172,14 +248,37 @@ contains
                return
             end if
          else
-            call model%mesh%select_segments(nodes, seg)
+            if (len_trim(cfg%boundary) == 0) call model%mesh%select_segments(nodes, seg)
             if (size(seg, 2) == 0) then
                stat = 1
                errmsg = where//'the selection holds no element edge (a single node cannot carry a traction)'
                return
             end if
-            call model%load%add_traction(model%mesh%x, seg, comp, id)
+            if (cfg%component == 'normal' .or. cfg%component == 'tangential') then
+               if (interior > 0) then
+                  stat = 1
+                  errmsg = where//"boundary = '"//trim(cfg%boundary)//"': "//str(interior)//' of its edges lie '// &
+                           'inside the mesh; a normal or tangential traction needs boundary edges'
+                  return
+               end if
+               call model%load%add_traction_rotated(model%mesh%x, seg, cfg%component == 'tangential', id)
+            else
+               call model%load%add_traction(model%mesh%x, seg, comp, id)
+            end if
          end if
       end subroutine add_edge_load
    end subroutine model_build
+
+   !> A relative file name is taken relative to the deck's directory (docs/geometry.md).
+   function beside(deck_path, file) result(path)
+      character(len=*), intent(in) :: deck_path, file
+      character(len=:), allocatable :: path
+      integer :: slash
+      slash = index(deck_path, '/', back=.true.)
+      if (file(1:1) == '/' .or. slash == 0) then
+         path = file
+      else
+         path = deck_path(1:slash)//file
+      end if
+   end function beside
 end module contact2d_model

@@ -117,13 +117,13 @@ contains
                c%ft = st%ft
                c%mu = st%mu
                do i = 1, st%nc
-                  d(i) = dot_product(st%u(:, c%node(i)), c%normal) - c%gap(i)
+                  d(i) = dot_product(st%u(:, c%node(i)), c%normal(:, i)) - c%gap(i)
                end do
                ! friction: F_t times the slip of the increment (backward Euler, exact for the law);
                ! normal work: F_n times the change of d
                wf = 0
                do i = 1, st%nc
-                  wf = wf + st%ft(i)*dot_product(st%u(:, c%node(i)) - uprev(:, c%node(i)), c%tangent)
+                  wf = wf + st%ft(i)*dot_product(st%u(:, c%node(i)) - uprev(:, c%node(i)), c%tangent(:, i))
                end do
                wn = sum(st%fn*(d - dprev))
                c%friction_dissipation = c%friction_dissipation + wf

@@ -1,24 +1,46 @@
 !> Contact of the body with a rigid straight obstacle: forward-increment Lagrange multipliers
-!> (Carpenter, Taylor & Katona 1991) with P1 or P0 multipliers and Tresca friction
-!> (SPEC sections 3, 4, 6; the paper's (10)-(13) and (17)), or a penalty for comparison.
+!> (Carpenter, Taylor & Katona 1991) with P1 or P0 multipliers and Tresca or Coulomb friction
+!> (SPEC sections 3, 4, 6; the paper's (10)-(13) and (17); Coulomb and the friction-law seam:
+!> docs/friction.md), or a penalty for comparison.
 !>
-!> Geometry is fixed and precomputed: contact nodes x_0..x_N ordered by abscissa, n = -nu (the
-!> body's outward normal), t = (-n2, n1), gaps g_i = (x_i - P).nu, weights w_i = integral of
-!> phi_i, thresholds s_i w_i, and for P0 the coupling D (tridiagonal) and the LCP matrix
-!> D M^-1 D^T (five bands). Forces: F_n, F_t per node; the force on the body is -F_n n - F_t t.
+!> Geometry is fixed and precomputed: contact nodes x_0..x_N ordered by abscissa; per node the
+!> gap g_i and the body's outward normal n_i = -nu_i from the node's closest point on the
+!> obstacle in the initial configuration (small deformation, docs/geometry.md), t_i = (-n2, n1);
+!> weights w_i = integral of phi_i, thresholds s_i w_i, and for P0 the coupling D (tridiagonal)
+!> and the LCP matrix D M^-1 D^T (five bands). Forces: F_n, F_t per node; the force on the body
+!> is -F_n n_i - F_t t_i. The step reads these per-node arrays only, never the obstacle's shape.
 module contact2d_contact
    use contact2d_kinds, only: wp, i8
    use contact2d_strings, only: str
    use contact2d_messages, only: messages_t
    use contact2d_lcp, only: lcp_t
+   use contact2d_friction, only: friction_law_t
+   use contact2d_friction_factory, only: friction_law_create
+   use contact2d_obstacle, only: obstacle_t
    implicit none
    private
-   public :: contact_t, status_separated, status_stick, status_slip
+   public :: contact_t, contact_config_t, status_separated, status_stick, status_slip
 
    integer, parameter :: status_separated = 0, status_stick = 1, status_slip = 2
    integer, parameter :: multiplier_p1 = 1, multiplier_p0 = 0
    !> |F_t| >= (1 - slip_tol) s_i w_i counts as slip in the status (SPEC section 3).
    real(wp), parameter :: slip_tol = 1.0e-8_wp
+
+   !> Settings of the contact set-up (one object instead of a long positional list).
+   type :: contact_config_t
+      class(obstacle_t), allocatable :: obstacle   !< the rigid obstacle
+      !> point O of the abscissa (huge() components: the first node) [mm]
+      real(wp) :: origin(2) = huge(1.0_wp)
+      character(len=4) :: multiplier = 'P1'        !< 'P1' | 'P0'
+      character(len=16) :: friction = 'frictionless'  !< 'frictionless' | 'tresca' | 'coulomb'
+      real(wp) :: friction_coefficient = 0         !< Coulomb mu [-] (friction = 'coulomb')
+      real(wp) :: threshold = 0                    !< uniform s [MPa] (when no profile)
+      real(wp), allocatable :: profile_s(:)        !< abscissae of a piecewise-linear s [mm]
+      real(wp), allocatable :: profile_values(:)   !< s there [MPa]
+      character(len=8) :: tresca_scope = 'all'     !< 'all' | 'contact'
+      character(len=8) :: method = 'lagrange'      !< 'lagrange' | 'penalty'
+      real(wp) :: penalty_stiffness = 0            !< k_p [MPa/mm]
+   end type contact_config_t
 
    !> A candidate contact boundary and the multipliers of the last step.
    type :: contact_t
@@ -27,17 +49,20 @@ module contact2d_contact
       integer :: multiplier = multiplier_p1 !< P1 or P0
       logical :: penalty = .false.          !< method = 'penalty' (normal force k_p w_i max(d_i, 0))
       real(wp) :: penalty_stiffness = 0     !< k_p [MPa/mm]
-      logical :: friction = .false.         !< Tresca friction
+      logical :: friction = .false.         !< Tresca or Coulomb friction (law allocated)
+      class(friction_law_t), allocatable :: law   !< the friction law (docs/friction.md section 2)
+      real(wp) :: friction_coefficient = 0  !< Coulomb mu [-] (0 unless friction = 'coulomb')
       logical :: friction_in_contact_only = .false.   !< tresca_scope = 'contact'
-      real(wp) :: normal(2) = 0             !< n, outward normal of the body on Gamma_c
-      real(wp) :: tangent(2) = 0            !< t = (-n2, n1)
+      real(wp), allocatable :: normal(:, :)   !< n_i, outward normal of the body (2, nc)
+      real(wp), allocatable :: tangent(:, :)  !< t_i = (-n2, n1) (2, nc)
       integer, allocatable :: node(:)       !< mesh node of each contact node (nc)
       real(wp), allocatable :: abscissa(:)  !< curvilinear abscissa from O [mm]
       real(wp), allocatable :: h(:)         !< segment lengths h_i = |x_(i+1) - x_i| (nc-1) [mm]
       real(wp), allocatable :: weight(:)    !< w_i = integral of phi_i over Gamma_c [mm]
       real(wp), allocatable :: gap(:)       !< initial gap g_i [mm]
       real(wp), allocatable :: threshold(:) !< s_i [MPa]
-      real(wp), allocatable :: limit(:)     !< s_i w_i [N]
+      real(wp), allocatable :: limit(:)     !< Tresca s_i w_i [N]
+      real(wp), allocatable :: slip_limit(:)  !< tangential limit of the last step [N] (the law's)
       real(wp), allocatable :: mass(:)      !< lumped mass m_i [t]
       logical, allocatable :: slides(:)     !< tangential dof free (friction applies)
       ! P0: D (tridiagonal: dl(i) = D(i+1, i) = D(i, i+1), dd(i) = D(i, i)) and the LCP
@@ -77,32 +102,29 @@ contains
    !> Set up the contact boundary. nodes: candidate nodes ordered by abscissa; free(2, nnode):
    !> 1 on free dofs. Nodes with a prescribed normal dof are dropped (warned); a candidate
    !> boundary touching a Dirichlet boundary is accepted with a warning (inf-sup lost).
-   subroutine contact_init(this, candidates, x, free, mass, obstacle_point, obstacle_normal, origin, &
-                           multiplier, friction, threshold, profile_s, profile_values, tresca_scope, &
-                           method, penalty_stiffness, warnings, stat, errmsg)
+   subroutine contact_init(this, cfg, candidates, x, free, mass, warnings, stat, errmsg)
       class(contact_t), intent(out) :: this
+      type(contact_config_t), intent(in) :: cfg
       integer, intent(in) :: candidates(:)
       real(wp), intent(in) :: x(:, :), free(:, :), mass(:)
-      real(wp), intent(in) :: obstacle_point(2), obstacle_normal(2)
-      real(wp), intent(in) :: origin(2)          !< point O; huge() components: first node
-      character(len=*), intent(in) :: multiplier, friction, tresca_scope, method
-      real(wp), intent(in) :: threshold          !< uniform s [MPa] (when no profile)
-      real(wp), intent(in) :: profile_s(:), profile_values(:)  !< piecewise-linear s(abscissa)
-      real(wp), intent(in) :: penalty_stiffness
       type(messages_t), intent(inout) :: warnings
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       logical, allocatable :: keep(:)
-      real(wp) :: nu(2), e(2), tol, lmax
+      real(wp), allocatable :: cand_gap(:), cand_nu(:, :)
+      real(wp) :: e(2), tol, lmax
       integer :: i, k, nd, ntouch
       character(len=:), allocatable :: ids
 
       stat = 1
       this%active = .true.
       this%errmsg = ''
-      nu = obstacle_normal/norm2(obstacle_normal)
-      this%normal = -nu
-      this%tangent = [-this%normal(2), this%normal(1)]
+      ! gap and normal of every candidate from its closest obstacle point, in the initial
+      ! configuration, fixed for the run (small deformation: docs/geometry.md, SPEC section 3)
+      allocate (cand_gap(size(candidates)), cand_nu(2, size(candidates)))
+      do i = 1, size(candidates)
+         call cfg%obstacle%project(x(:, candidates(i)), cand_gap(i), cand_nu(:, i))
+      end do
       if (size(candidates) == 0) then
          errmsg = 'contact: the candidate boundary (edge and range) holds no node'
          return
@@ -118,7 +140,7 @@ contains
          k = candidates(i)
          keep(i) = .true.
          if (any(free(:, k) == 0)) ntouch = ntouch + 1
-         if (any(free(:, k) == 0 .and. abs(this%normal) > 1.0e-12_wp)) then
+         if (any(free(:, k) == 0 .and. abs(cand_nu(:, i)) > 1.0e-12_wp)) then
             keep(i) = .false.
             if (len(ids) > 0) ids = ids//', '
             ids = ids//str(k)
@@ -136,6 +158,11 @@ contains
       end if
       this%node = pack(candidates, keep)
       this%nc = size(this%node)
+      allocate (this%normal(2, this%nc), this%tangent(2, this%nc))
+      this%normal(1, :) = -pack(cand_nu(1, :), keep)
+      this%normal(2, :) = -pack(cand_nu(2, :), keep)
+      this%tangent(1, :) = -this%normal(2, :)
+      this%tangent(2, :) = this%normal(1, :)
       if (this%nc == 0) then
          errmsg = 'contact: every candidate node has a prescribed normal displacement; Gamma_c is empty'
          return
@@ -150,7 +177,8 @@ contains
       end do
 
       associate (nc => this%nc)
-         allocate (this%abscissa(nc), this%h(max(nc - 1, 0)), this%weight(nc), this%gap(nc), &
+         this%gap = pack(cand_gap, keep)
+         allocate (this%abscissa(nc), this%h(max(nc - 1, 0)), this%weight(nc), &
                    this%threshold(nc), this%limit(nc), this%mass(nc), this%slides(nc), &
                    this%fn(nc), this%ft(nc), this%mu(nc), this%dtil(nc), this%b(nc), this%stuck(nc), &
                    this%last_status(nc), this%cur_status(nc))
@@ -174,8 +202,8 @@ contains
          end if
          ! abscissa from O along the chain
          e = (x(:, this%node(2)) - x(:, this%node(1)))/this%h(1)
-         if (all(origin < huge(1.0_wp))) then
-            this%abscissa(1) = dot_product(x(:, this%node(1)) - origin, e)
+         if (all(cfg%origin < huge(1.0_wp))) then
+            this%abscissa(1) = dot_product(x(:, this%node(1)) - cfg%origin, e)
          else
             this%abscissa(1) = 0
          end if
@@ -184,9 +212,8 @@ contains
          end do
          do i = 1, nc
             k = this%node(i)
-            this%gap(i) = dot_product(x(:, k) - obstacle_point, nu)
             this%mass(i) = mass(k)
-            this%slides(i) = all(free(:, k) == 1 .or. abs(this%tangent) <= 1.0e-12_wp)
+            this%slides(i) = all(free(:, k) == 1 .or. abs(this%tangent(:, i)) <= 1.0e-12_wp)
             if (this%gap(i) < -tol) then
                errmsg = 'contact: node '//str(k)//' at ('//str(x(1, k))//', '//str(x(2, k))// &
                         ') starts inside the obstacle (gap '//str(this%gap(i))//' mm)'
@@ -197,22 +224,36 @@ contains
       end associate
 
       ! friction threshold s_i: uniform, or piecewise linear in the abscissa (held beyond the ends)
-      this%friction = friction == 'tresca'
-      this%friction_in_contact_only = tresca_scope == 'contact'
-      if (size(profile_s) > 0) then
-         do i = 1, this%nc
-            this%threshold(i) = interpolate(profile_s, profile_values, this%abscissa(i))
-         end do
+      this%friction = cfg%friction == 'tresca'   ! Tresca's s_i below; the law is made after
+      this%friction_in_contact_only = cfg%tresca_scope == 'contact'
+      if (allocated(cfg%profile_s)) then
+         if (size(cfg%profile_s) > 0) then
+            do i = 1, this%nc
+               this%threshold(i) = interpolate(cfg%profile_s, cfg%profile_values, this%abscissa(i))
+            end do
+         else
+            this%threshold = cfg%threshold
+         end if
       else
-         this%threshold = threshold
+         this%threshold = cfg%threshold
       end if
       if (.not. this%friction) this%threshold = 0
       ! no friction force where the tangential dof is prescribed: the reaction carries it
       this%limit = merge(this%threshold*this%weight, 0.0_wp, this%slides)
+      ! the friction law (docs/friction.md section 2): Tresca s_i w_i, Coulomb mu F_n,i
+      this%friction_coefficient = cfg%friction_coefficient
+      call friction_law_create(cfg%friction, this%limit, this%slides, this%friction_coefficient, cfg%tresca_scope, &
+                               this%law, stat, errmsg)
+      if (stat /= 0) return
+      stat = 1
+      this%friction = allocated(this%law)
+      allocate (this%slip_limit(this%nc))
+      if (this%friction) call this%law%limits(this%fn, this%fn, this%slip_limit)
+      if (.not. this%friction) this%slip_limit = 0
 
-      this%penalty = method == 'penalty'
-      this%penalty_stiffness = penalty_stiffness
-      if (multiplier == 'P0') then
+      this%penalty = cfg%method == 'penalty'
+      this%penalty_stiffness = cfg%penalty_stiffness
+      if (cfg%multiplier == 'P0') then
          this%multiplier = multiplier_p0
          call setup_p0(this)
       else
@@ -306,10 +347,6 @@ contains
       logical :: cells
 
       call system_clock(t0)
-      nx = this%normal(1)
-      ny = this%normal(2)
-      tx = this%tangent(1)
-      ty = this%tangent(2)
       rc = 1/c
       cells = this%multiplier == multiplier_p0 .and. .not. this%penalty
       ! normal forces
@@ -317,38 +354,44 @@ contains
          ! explicit penalty on the gap at t_n: F_n = k_p w_i max(d_i^n, 0)
          do i = 1, this%nc
             k = this%node(i)
+            nx = this%normal(1, i)
+            ny = this%normal(2, i)
             this%fn(i) = this%penalty_stiffness*this%weight(i)*max(u(1, k)*nx + u(2, k)*ny - this%gap(i), 0.0_wp)
          end do
       else if (this%multiplier == multiplier_p1) then
          ! P1: Lambda_n,i = max(0, m_i d~_i / c), node by node
          do i = 1, this%nc
             k = this%node(i)
+            nx = this%normal(1, i)
+            ny = this%normal(2, i)
             this%fn(i) = max(0.0_wp, this%mass(i)*(unew(1, k)*nx + unew(2, k)*ny - this%gap(i))*rc)
          end do
       else
          ! P0: mu >= 0, (D M^-1 D^T) mu - D d~ / c >= 0, complementary; F_n = D mu
          do i = 1, this%nc
             k = this%node(i)
+            nx = this%normal(1, i)
+            ny = this%normal(2, i)
             this%dtil(i) = (unew(1, k)*nx + unew(2, k)*ny - this%gap(i))*rc
          end do
          call d_apply(this, this%dtil, this%b)
          if (this%stat == 0) call this%lcp%solve(this%b, this%mu, this%stat, this%errmsg)
          call d_apply(this, this%mu, this%fn)
       end if
-      ! tangential forces: trial stick, else slip at the threshold (nodal Tresca)
+      ! tangential forces: the law's limits from this step's normal forces (one call on plain
+      ! arrays), then trial stick, else slip at the limit (docs/friction.md section 1)
       if (this%friction) then
+         ! contact judged like the status (SPEC section 3): P1 by F_n, P0 on the node's own dual cell
+         if (cells) then
+            call this%law%limits(this%fn, this%mu, this%slip_limit)
+         else
+            call this%law%limits(this%fn, this%fn, this%slip_limit)
+         end if
          do i = 1, this%nc
             k = this%node(i)
-            lim = this%limit(i)
-            ! tresca_scope = 'contact': friction only where in contact, judged like the status
-            ! (P0: on the node's own dual cell, mu_n,i > 0; SPEC section 3)
-            if (this%friction_in_contact_only) then
-               if (cells) then
-                  if (.not. this%mu(i) > 0) lim = 0
-               else if (.not. this%fn(i) > 0) then
-                  lim = 0
-               end if
-            end if
+            tx = this%tangent(1, i)
+            ty = this%tangent(2, i)
+            lim = this%slip_limit(i)
             trial = this%mass(i)*((unew(1, k) - u(1, k))*tx + (unew(2, k) - u(2, k))*ty)*rc
             this%ft(i) = sign(min(abs(trial), lim), trial)
             this%stuck(i) = abs(trial) < lim
@@ -361,6 +404,10 @@ contains
       wf = 0
       do i = 1, this%nc
          k = this%node(i)
+         nx = this%normal(1, i)
+         ny = this%normal(2, i)
+         tx = this%tangent(1, i)
+         ty = this%tangent(2, i)
          fx = -this%fn(i)*nx - this%ft(i)*tx
          fy = -this%fn(i)*ny - this%ft(i)*ty
          unew(1, k) = unew(1, k) + (c/this%mass(i))*fx
@@ -418,10 +465,11 @@ contains
       end if
       if (.not. touching) then
          status = status_separated
-      else if (.not. this%friction .or. (this%threshold(i) <= 0 .and. this%slides(i))) then
-         ! no friction or a zero threshold s_i = 0: the node slides freely (docs/output.md)
+      else if (.not. this%friction .or. (this%slip_limit(i) <= 0 .and. this%slides(i))) then
+         ! no friction, or a zero limit this step (Tresca s_i = 0, Coulomb mu = 0): the node
+         ! slides freely (docs/output.md)
          status = status_slip
-      else if (this%limit(i) > 0 .and. abs(this%ft(i)) >= (1 - slip_tol)*this%limit(i)) then
+      else if (this%slip_limit(i) > 0 .and. abs(this%ft(i)) >= (1 - slip_tol)*this%slip_limit(i)) then
          status = status_slip
       else
          status = status_stick
@@ -480,7 +528,7 @@ contains
       real(wp) :: d(this%nc), dd(this%nc)
       integer :: i
       do i = 1, this%nc
-         d(i) = dot_product(u(:, this%node(i)), this%normal) - this%gap(i)
+         d(i) = dot_product(u(:, this%node(i)), this%normal(:, i)) - this%gap(i)
       end do
       if (this%multiplier == multiplier_p0 .and. .not. this%penalty) then
          call d_apply(this, d, dd)

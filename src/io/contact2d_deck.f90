@@ -42,8 +42,10 @@ module contact2d_deck
                                                     'initial']
    character(len=6), parameter :: edges(4) = [character(len=6) :: 'bottom', 'right', 'top', 'left']
 
-   !> &mesh: structured rectangle [0, lx] x [0, ly] with (nx 2^level) x (ny 2^level) elements.
+   !> &mesh: structured rectangle [0, lx] x [0, ly] with (nx 2^level) x (ny 2^level) elements,
+   !> or a Gmsh file (.msh, or .geo meshed at start-up) refined `level` times (docs/geometry.md).
    type :: mesh_cfg_t
+      character(len=256) :: file = ''  !< Gmsh mesh or geometry; '' for the built-in rectangle
       real(wp) :: lx = unset          !< width [mm], required, > 0
       real(wp) :: ly = unset          !< height [mm], required, > 0
       integer :: nx = unset_int       !< divisions along x at level 0, required, >= 1
@@ -61,10 +63,13 @@ module contact2d_deck
    !> &dirichlet (prescribed displacement [mm]) or &traction (surface traction [MPa]) on the
    !> nodes of one side of the bounding box within an optional coordinate range.
    type :: edge_load_cfg_t
-      character(len=16) :: edge = ''               !< 'bottom' | 'right' | 'top' | 'left', required
+      character(len=16) :: edge = ''               !< 'bottom' | 'right' | 'top' | 'left' (built-in mesh)
+      character(len=64) :: boundary = ''           !< name of a Gmsh physical curve (instead of edge)
       real(wp) :: xmin = -unset, xmax = unset      !< x range of the selection [mm]
       real(wp) :: ymin = -unset, ymax = unset      !< y range of the selection [mm]
-      character(len=8) :: component = ''           !< 'x' | 'y', required
+      !> 'x' | 'y', required; tractions also 'normal' | 'tangential' (along the outward normal n
+      !> of each edge and t = (-n2, n1))
+      character(len=16) :: component = ''
       real(wp) :: values(max_stages) = unset       !< value at the end of each stage, required
       real(wp) :: times(max_stages) = unset        !< end time of each stage [s]
       integer :: nstage = 0                        !< derived: number of stages
@@ -74,7 +79,12 @@ module contact2d_deck
    !> &contact: a candidate boundary against a rigid straight obstacle (SPEC section 3).
    type :: contact_cfg_t
       logical :: present = .false.                 !< derived: the deck has a &contact group
-      character(len=16) :: edge = ''               !< candidate side, required
+      character(len=16) :: edge = ''               !< candidate side (built-in mesh)
+      character(len=64) :: boundary = ''           !< candidate Gmsh physical curve (instead of edge)
+      character(len=8) :: obstacle = 'plane'       !< 'plane' | 'circle'
+      real(wp) :: obstacle_center(2) = [unset, unset]  !< circle centre [mm]
+      real(wp) :: obstacle_radius = unset          !< circle radius [mm], > 0
+      character(len=8) :: obstacle_side = 'outside'  !< body 'outside' (indenter) | 'inside' (cavity)
       real(wp) :: xmin = -unset, xmax = unset      !< x range of the candidate boundary [mm]
       real(wp) :: ymin = -unset, ymax = unset      !< y range of the candidate boundary [mm]
       real(wp) :: obstacle_point(2) = [0.0_wp, 0.0_wp]   !< a point P of the obstacle line [mm]
@@ -82,7 +92,8 @@ module contact2d_deck
       real(wp) :: origin(2) = [unset, unset]       !< point O of the abscissa; default: first node
       character(len=4) :: direction = 'ccw'        !< abscissa runs 'ccw' or 'cw' along the boundary
       character(len=4) :: multiplier = 'P1'        !< 'P1' | 'P0'
-      character(len=16) :: friction = 'frictionless'  !< 'frictionless' | 'tresca'
+      character(len=16) :: friction = 'frictionless'  !< 'frictionless' | 'tresca' | 'coulomb'
+      real(wp) :: friction_coefficient = 0         !< Coulomb mu [-], >= 0 (docs/friction.md)
       real(wp) :: threshold = 0                    !< uniform Tresca threshold s [MPa], >= 0
       real(wp) :: threshold_abscissa(max_points) = unset  !< abscissae of a piecewise-linear s [mm]
       real(wp) :: threshold_values(max_points) = unset    !< s at those abscissae [MPa]
@@ -614,9 +625,9 @@ contains
       character(len=:), allocatable, intent(inout) :: errmsg
       real(wp) :: lx, ly
       integer :: nx, ny, level, ios, i
-      character(len=256) :: msg
-      namelist /mesh/ lx, ly, nx, ny, level
-      lx = cfg%lx; ly = cfg%ly; nx = cfg%nx; ny = cfg%ny; level = cfg%level
+      character(len=256) :: msg, file
+      namelist /mesh/ lx, ly, nx, ny, level, file
+      lx = cfg%lx; ly = cfg%ly; nx = cfg%nx; ny = cfg%ny; level = cfg%level; file = cfg%file
       if (size(blk) > 0) then
          read (blk, nml=mesh, iostat=ios, iomsg=msg)
          if (read_failed(ios, msg, where, stat, errmsg)) return
@@ -625,7 +636,7 @@ contains
          read (ovr(i)%assignment, nml=mesh, iostat=ios, iomsg=msg)
          if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
-      cfg%lx = lx; cfg%ly = ly; cfg%nx = nx; cfg%ny = ny; cfg%level = level
+      cfg%lx = lx; cfg%ly = ly; cfg%nx = nx; cfg%ny = ny; cfg%level = level; cfg%file = file
    end subroutine read_mesh
 
    subroutine read_material(blk, ovr, where, cfg, stat, errmsg)
@@ -659,13 +670,13 @@ contains
       type(edge_load_cfg_t), intent(inout) :: cfg
       integer, intent(inout) :: stat
       character(len=:), allocatable, intent(inout) :: errmsg
-      character(len=line_len) :: edge, component   ! long enough to see over-long values
+      character(len=line_len) :: edge, boundary, component   ! long enough to see over-long values
       real(wp) :: xmin, xmax, ymin, ymax, values(max_stages), times(max_stages)
       integer :: ios, i
       character(len=256) :: msg
-      namelist /dirichlet/ edge, xmin, xmax, ymin, ymax, component, values, times
-      namelist /traction/ edge, xmin, xmax, ymin, ymax, component, values, times
-      edge = cfg%edge; component = cfg%component
+      namelist /dirichlet/ edge, boundary, xmin, xmax, ymin, ymax, component, values, times
+      namelist /traction/ edge, boundary, xmin, xmax, ymin, ymax, component, values, times
+      edge = cfg%edge; boundary = cfg%boundary; component = cfg%component
       xmin = cfg%xmin; xmax = cfg%xmax; ymin = cfg%ymin; ymax = cfg%ymax
       values = cfg%values; times = cfg%times
       if (group == 'dirichlet') then
@@ -683,8 +694,9 @@ contains
          if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
       if (too_long(where, 'edge', edge, len(cfg%edge), stat, errmsg)) return
+      if (too_long(where, 'boundary', boundary, len(cfg%boundary), stat, errmsg)) return
       if (too_long(where, 'component', component, len(cfg%component), stat, errmsg)) return
-      cfg%edge = edge; cfg%component = component
+      cfg%edge = edge; cfg%boundary = boundary; cfg%component = component
       cfg%xmin = xmin; cfg%xmax = xmax; cfg%ymin = ymin; cfg%ymax = ymax
       cfg%values = values; cfg%times = times
    end subroutine read_edge_load
@@ -697,14 +709,19 @@ contains
       integer, intent(inout) :: stat
       character(len=:), allocatable, intent(inout) :: errmsg
       character(len=line_len) :: edge, friction, direction, multiplier, tresca_scope, method
+      character(len=line_len) :: boundary, obstacle, obstacle_side
+      real(wp) :: obstacle_center(2), obstacle_radius
       real(wp) :: xmin, xmax, ymin, ymax, obstacle_point(2), obstacle_normal(2), origin(2)
       real(wp) :: threshold, threshold_abscissa(max_points), threshold_values(max_points)
-      real(wp) :: penalty_stiffness
+      real(wp) :: penalty_stiffness, friction_coefficient
       integer :: ios, i
       character(len=256) :: msg
       namelist /contact/ edge, xmin, xmax, ymin, ymax, obstacle_point, obstacle_normal, origin, &
          direction, multiplier, friction, threshold, threshold_abscissa, threshold_values, &
-         tresca_scope, method, penalty_stiffness
+         tresca_scope, method, penalty_stiffness, friction_coefficient, boundary, obstacle, &
+         obstacle_center, obstacle_radius, obstacle_side
+      boundary = cfg%boundary; obstacle = cfg%obstacle; obstacle_center = cfg%obstacle_center
+      obstacle_radius = cfg%obstacle_radius; obstacle_side = cfg%obstacle_side
       edge = cfg%edge; xmin = cfg%xmin; xmax = cfg%xmax; ymin = cfg%ymin; ymax = cfg%ymax
       obstacle_point = cfg%obstacle_point; obstacle_normal = cfg%obstacle_normal
       origin = cfg%origin; direction = cfg%direction; multiplier = cfg%multiplier
@@ -712,6 +729,7 @@ contains
       threshold_abscissa = cfg%threshold_abscissa; threshold_values = cfg%threshold_values
       tresca_scope = cfg%tresca_scope; method = cfg%method
       penalty_stiffness = cfg%penalty_stiffness
+      friction_coefficient = cfg%friction_coefficient
       read (blk, nml=contact, iostat=ios, iomsg=msg)
       if (read_failed(ios, msg, where, stat, errmsg)) return
       do i = 1, size(ovr)
@@ -724,6 +742,11 @@ contains
       if (too_long(where, 'multiplier', multiplier, len(cfg%multiplier), stat, errmsg)) return
       if (too_long(where, 'tresca_scope', tresca_scope, len(cfg%tresca_scope), stat, errmsg)) return
       if (too_long(where, 'method', method, len(cfg%method), stat, errmsg)) return
+      if (too_long(where, 'boundary', boundary, len(cfg%boundary), stat, errmsg)) return
+      if (too_long(where, 'obstacle', obstacle, len(cfg%obstacle), stat, errmsg)) return
+      if (too_long(where, 'obstacle_side', obstacle_side, len(cfg%obstacle_side), stat, errmsg)) return
+      cfg%boundary = boundary; cfg%obstacle = obstacle; cfg%obstacle_center = obstacle_center
+      cfg%obstacle_radius = obstacle_radius; cfg%obstacle_side = obstacle_side
       cfg%edge = edge; cfg%xmin = xmin; cfg%xmax = xmax; cfg%ymin = ymin; cfg%ymax = ymax
       cfg%obstacle_point = obstacle_point; cfg%obstacle_normal = obstacle_normal
       cfg%origin = origin; cfg%direction = direction; cfg%multiplier = multiplier
@@ -731,6 +754,7 @@ contains
       cfg%threshold_abscissa = threshold_abscissa; cfg%threshold_values = threshold_values
       cfg%tresca_scope = tresca_scope; cfg%method = method
       cfg%penalty_stiffness = penalty_stiffness
+      cfg%friction_coefficient = friction_coefficient
    end subroutine read_contact
 
    subroutine read_solver(blk, ovr, where, cfg, stat, errmsg)
@@ -843,6 +867,21 @@ contains
       ! every real first: finite and of sane magnitude, before any comparison (contact2d_checks)
       if (any_not_finite()) return
       associate (m => deck%mesh)
+         if (len_trim(m%file) > 0) then
+            if (m%lx /= unset .or. m%ly /= unset .or. m%nx /= unset_int .or. m%ny /= unset_int) then
+               errmsg = "mesh:file = '"//trim(m%file)//"' is given with lx/ly/nx/ny; give either a file "// &
+                        'or the rectangle'
+               return
+            end if
+            if (.not. (ends_with(m%file, '.msh') .or. ends_with(m%file, '.geo'))) then
+               errmsg = "mesh:file = '"//trim(m%file)//"' must end in .msh (a Gmsh mesh) or .geo (a Gmsh geometry)"
+               return
+            end if
+            if (m%level < 0 .or. m%level > 8) then
+               errmsg = 'mesh:level = '//str(m%level)//' must be in 0..8 for a Gmsh file'
+               return
+            end if
+         else
          if (m%lx == unset) then; errmsg = 'mesh:lx is required (width, mm)'; return; end if
          if (m%ly == unset) then; errmsg = 'mesh:ly is required (height, mm)'; return; end if
          if (m%nx == unset_int) then; errmsg = 'mesh:nx is required (divisions along x)'; return; end if
@@ -861,6 +900,7 @@ contains
             errmsg = 'mesh: nx*ny*4**level = '//str(real(m%nx, wp)*real(m%ny, wp)*4.0_wp**m%level)// &
                      ' elements is more than this program is meant for (5e7)'
             return
+         end if
          end if
       end associate
 
@@ -1046,11 +1086,57 @@ contains
 
       if (deck%contact%present) then
          associate (c => deck%contact)
-            if (edge_id(c%edge) == 0) then
-               errmsg = "contact:edge = '"//trim(c%edge)//"' is not one of "//join(edges, ', ')
-               return
+            if (len_trim(c%boundary) > 0) then
+               if (len_trim(c%edge) > 0) then
+                  errmsg = "contact: give edge or boundary, not both"
+                  return
+               end if
+               if (len_trim(deck%mesh%file) == 0) then
+                  errmsg = "contact:boundary = '"//trim(c%boundary)//"' needs a Gmsh mesh (mesh:file); "// &
+                           "the built-in rectangle takes edge = 'bottom' | 'right' | 'top' | 'left'"
+                  return
+               end if
+            else
+               if (edge_id(c%edge) == 0) then
+                  errmsg = "contact:edge = '"//trim(c%edge)//"' is not one of "//join(edges, ', ')// &
+                           " (or give boundary = '<physical curve>' with a Gmsh mesh)"
+                  return
+               end if
+               if (len_trim(deck%mesh%file) > 0) then
+                  errmsg = "contact:edge = '"//trim(c%edge)//"' needs the built-in rectangle; with a Gmsh "// &
+                           "mesh name a physical curve: boundary = '...'"
+                  return
+               end if
             end if
             c%edge = lower(c%edge)
+            c%obstacle = lower(c%obstacle)
+            if (.not. any(c%obstacle == [character(len=8) :: 'plane', 'circle'])) then
+               errmsg = "contact:obstacle = '"//trim(c%obstacle)//"' is not one of 'plane', 'circle'"
+               return
+            end if
+            c%obstacle_side = lower(c%obstacle_side)
+            if (.not. any(c%obstacle_side == [character(len=8) :: 'outside', 'inside'])) then
+               errmsg = "contact:obstacle_side = '"//trim(c%obstacle_side)//"' is not one of 'outside', 'inside'"
+               return
+            end if
+            if (c%obstacle == 'circle') then
+               if (any(c%obstacle_center == unset)) then
+                  errmsg = "contact:obstacle = 'circle' needs obstacle_center (mm)"
+                  return
+               end if
+               if (c%obstacle_radius == unset) then
+                  errmsg = "contact:obstacle = 'circle' needs obstacle_radius (mm)"
+                  return
+               end if
+               if (.not. c%obstacle_radius > 0) then
+                  errmsg = 'contact:obstacle_radius = '//str(c%obstacle_radius)//' must be > 0 (mm)'
+                  return
+               end if
+            else if (any(c%obstacle_center /= unset) .or. c%obstacle_radius /= unset) then
+               errmsg = "contact:obstacle_center/obstacle_radius are set but obstacle = 'plane' ignores them; "// &
+                        "use obstacle = 'circle'"
+               return
+            end if
             if (.not. (c%xmin <= c%xmax .and. c%ymin <= c%ymax)) then
                errmsg = 'contact: the range needs xmin <= xmax and ymin <= ymax'
                return
@@ -1072,8 +1158,18 @@ contains
                return
             end if
             c%friction = lower(c%friction)
-            if (.not. any(c%friction == [character(len=16) :: 'frictionless', 'tresca'])) then
-               errmsg = "contact:friction = '"//trim(c%friction)//"' is not one of 'frictionless', 'tresca'"
+            if (.not. any(c%friction == [character(len=16) :: 'frictionless', 'tresca', 'coulomb'])) then
+               errmsg = "contact:friction = '"//trim(c%friction)//"' is not one of 'frictionless', 'tresca', 'coulomb'"
+               return
+            end if
+            ! Coulomb (docs/friction.md): a finite mu >= 0, and no Tresca settings with it
+            if (.not. (c%friction_coefficient >= 0 .and. c%friction_coefficient <= huge(1.0_wp))) then
+               errmsg = 'contact:friction_coefficient = '//str(c%friction_coefficient)//' must be finite and >= 0'
+               return
+            end if
+            if (c%friction /= 'coulomb' .and. c%friction_coefficient /= 0) then
+               errmsg = "contact:friction_coefficient is set but friction = '"//trim(c%friction)// &
+                        "'; use friction = 'coulomb'"
                return
             end if
             if (.not. c%threshold >= 0) then
@@ -1106,13 +1202,18 @@ contains
                   end if
                end do
             end if
-            if (c%friction == 'frictionless' .and. (c%threshold /= 0 .or. c%npoints > 0)) then
-               errmsg = "contact: a threshold is given but friction = 'frictionless'; use friction = 'tresca'"
+            if (c%friction /= 'tresca' .and. (c%threshold /= 0 .or. c%npoints > 0)) then
+               errmsg = "contact: a threshold is given but friction = '"//trim(c%friction)//"'; use friction = 'tresca'"
                return
             end if
             c%tresca_scope = lower(c%tresca_scope)
             if (.not. any(c%tresca_scope == [character(len=8) :: 'all', 'contact'])) then
                errmsg = "contact:tresca_scope = '"//trim(c%tresca_scope)//"' is not one of 'all', 'contact'"
+               return
+            end if
+            if (c%friction == 'coulomb' .and. c%tresca_scope /= 'all') then
+               errmsg = "contact:tresca_scope = '"//trim(c%tresca_scope)//"' applies to Tresca only; "// &
+                        "Coulomb friction acts where F_n > 0"
                return
             end if
             c%method = lower(c%method)
@@ -1169,6 +1270,8 @@ contains
                if (check_finite('contact:threshold_abscissa', c%threshold_abscissa, errmsg)) return
                if (check_finite('contact:threshold_values', c%threshold_values, errmsg)) return
                if (check_finite('contact:penalty_stiffness', c%penalty_stiffness, errmsg)) return
+               if (check_finite('contact:obstacle_center', c%obstacle_center, errmsg)) return
+               if (check_finite('contact:obstacle_radius', c%obstacle_radius, errmsg)) return
             end if
             if (check_finite('solver:dt', s%dt, errmsg)) return
             if (check_finite('solver:dt_factor', s%dt_factor, errmsg)) return
@@ -1205,13 +1308,36 @@ contains
          integer :: ntimes, j
          g = 'line '//str(cfg%line)//': &'//group//' (#'//str(k)//')'
          stat = 2
-         if (edge_id(cfg%edge) == 0) then
-            errmsg = g//": edge = '"//trim(cfg%edge)//"' is not one of "//join(edges, ', ')
-            return
+         if (len_trim(cfg%boundary) > 0) then
+            if (len_trim(cfg%edge) > 0) then
+               errmsg = g//': give edge or boundary, not both'
+               return
+            end if
+            if (len_trim(deck%mesh%file) == 0) then
+               errmsg = g//": boundary = '"//trim(cfg%boundary)//"' needs a Gmsh mesh (mesh:file); the "// &
+                        "built-in rectangle takes edge = 'bottom' | 'right' | 'top' | 'left'"
+               return
+            end if
+         else
+            if (edge_id(cfg%edge) == 0) then
+               errmsg = g//": edge = '"//trim(cfg%edge)//"' is not one of "//join(edges, ', ')// &
+                        " (or give boundary = '<physical curve>' with a Gmsh mesh)"
+               return
+            end if
+            if (len_trim(deck%mesh%file) > 0) then
+               errmsg = g//": edge = '"//trim(cfg%edge)//"' needs the built-in rectangle; with a Gmsh mesh "// &
+                        "name a physical curve: boundary = '...'"
+               return
+            end if
          end if
          cfg%edge = lower(cfg%edge)
          cfg%component = lower(cfg%component)
-         if (.not. any(cfg%component == [character(len=8) :: 'x', 'y'])) then
+         if (group == 'traction') then
+            if (.not. any(cfg%component == [character(len=16) :: 'x', 'y', 'normal', 'tangential'])) then
+               errmsg = g//": component = '"//trim(cfg%component)//"' is not one of 'x', 'y', 'normal', 'tangential'"
+               return
+            end if
+         else if (.not. any(cfg%component == [character(len=16) :: 'x', 'y'])) then
             errmsg = g//": component = '"//trim(cfg%component)//"' is not one of 'x', 'y'"
             return
          end if
@@ -1257,6 +1383,14 @@ contains
       end subroutine validate_edge_load
    end subroutine validate
 
+   pure logical function ends_with(s, tail)
+      character(len=*), intent(in) :: s, tail
+      integer :: n
+      n = len_trim(s)
+      ends_with = .false.
+      if (n >= len(tail)) ends_with = lower(s(n - len(tail) + 1:n)) == tail
+   end function ends_with
+
    pure function upper2(s) result(t)
       character(len=*), intent(in) :: s
       character(len=len(s)) :: t
@@ -1277,10 +1411,14 @@ contains
       character(len=1), parameter :: nl = new_line('a')
       integer :: i
 
-      text = '&mesh'//nl// &
-             kv('lx', str(deck%mesh%lx))//kv('ly', str(deck%mesh%ly))// &
-             kv('nx', str(deck%mesh%nx))//kv('ny', str(deck%mesh%ny))// &
-             kv('level', str(deck%mesh%level))//'/'//nl
+      if (len_trim(deck%mesh%file) > 0) then
+         text = '&mesh'//nl//kv('file', q(deck%mesh%file))//kv('level', str(deck%mesh%level))//'/'//nl
+      else
+         text = '&mesh'//nl// &
+                kv('lx', str(deck%mesh%lx))//kv('ly', str(deck%mesh%ly))// &
+                kv('nx', str(deck%mesh%nx))//kv('ny', str(deck%mesh%ny))// &
+                kv('level', str(deck%mesh%level))//'/'//nl
+      end if
       text = text//'&material'//nl// &
              kv('young', str(deck%material%young))//kv('poisson', str(deck%material%poisson))// &
              kv('density', str(deck%material%density))//'/'//nl
@@ -1292,13 +1430,21 @@ contains
       end do
       if (deck%contact%present) then
          associate (c => deck%contact)
-            text = text//'&contact'//nl//kv('edge', q(c%edge))//range_text(c%xmin, c%xmax, c%ymin, c%ymax)// &
-                   kv('obstacle_point', reals(c%obstacle_point))// &
-                   kv('obstacle_normal', reals(c%obstacle_normal))
+            text = text//'&contact'//nl//where(c%edge, c%boundary)//range_text(c%xmin, c%xmax, c%ymin, c%ymax)// &
+                   kv('obstacle', q(c%obstacle))
+            if (c%obstacle == 'circle') then
+               text = text//kv('obstacle_center', reals(c%obstacle_center))// &
+                      kv('obstacle_radius', str(c%obstacle_radius))//kv('obstacle_side', q(c%obstacle_side))
+            else
+               text = text//kv('obstacle_point', reals(c%obstacle_point))// &
+                      kv('obstacle_normal', reals(c%obstacle_normal))
+            end if
             if (all(c%origin /= unset)) text = text//kv('origin', reals(c%origin))
             text = text//kv('direction', q(c%direction))//kv('multiplier', q(c%multiplier))// &
                    kv('friction', q(c%friction))
-            if (c%npoints > 0) then
+            if (c%friction == 'coulomb') then
+               text = text//kv('friction_coefficient', str(c%friction_coefficient))
+            else if (c%npoints > 0) then
                text = text//kv('threshold_abscissa', reals(c%threshold_abscissa(1:c%npoints)))// &
                       kv('threshold_values', reals(c%threshold_values(1:c%npoints)))
             else
@@ -1359,10 +1505,19 @@ contains
          if (y0 /= -unset) t = t//kv('ymin', str(y0))
          if (y1 /= unset) t = t//kv('ymax', str(y1))
       end function range_text
+      function where(edge, boundary) result(t)
+         character(len=*), intent(in) :: edge, boundary
+         character(len=:), allocatable :: t
+         if (len_trim(boundary) > 0) then
+            t = kv('boundary', q(boundary))
+         else
+            t = kv('edge', q(edge))
+         end if
+      end function where
       function edge_load(cfg) result(t)
          type(edge_load_cfg_t), intent(in) :: cfg
          character(len=:), allocatable :: t
-         t = kv('edge', q(cfg%edge))//range_text(cfg%xmin, cfg%xmax, cfg%ymin, cfg%ymax)// &
+         t = where(cfg%edge, cfg%boundary)//range_text(cfg%xmin, cfg%xmax, cfg%ymin, cfg%ymax)// &
              kv('component', q(cfg%component))//kv('values', reals(cfg%values(1:cfg%nstage)))// &
              kv('times', reals(cfg%times(1:cfg%nstage)))
       end function edge_load

@@ -109,9 +109,14 @@ contains
             call this%file%dataset(g, 'weight', c%weight, 'mm')
             call this%file%dataset(g, 'gap', c%gap, 'mm')
             call this%file%dataset(g, 'threshold', c%threshold, 'MPa')
-            call this%file%attr(g, 'normal', 'outward normal of the body (n_x, n_y) = ('// &
-                                str(c%normal(1))//', '//str(c%normal(2))//')')
-            call this%file%attr(g, 'friction', merge('tresca      ', 'frictionless', c%friction))
+            ! per-node outward normal of the body, fixed at set-up (docs/geometry.md)
+            call this%file%dataset(g, 'normal', c%normal, '1')
+            if (c%friction) then
+               call this%file%attr(g, 'friction', c%law%name())
+               if (c%law%name() == 'coulomb') call this%file%attr(g, 'friction_coefficient', c%friction_coefficient)
+            else
+               call this%file%attr(g, 'friction', 'frictionless')
+            end if
             call this%file%close_group(g)
          end associate
       end if

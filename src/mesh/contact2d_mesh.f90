@@ -5,6 +5,7 @@
 !> bottom-left corner.
 module contact2d_mesh
    use contact2d_kinds, only: wp
+   use contact2d_strings, only: str
    implicit none
    private
    public :: mesh_t, side_names
@@ -20,6 +21,14 @@ module contact2d_mesh
       real(wp), allocatable :: x(:, :)    !< coordinates (2, nnode) [mm]
       integer, allocatable :: conn(:, :)  !< connectivity (4, nel), 1-based, counter-clockwise
       real(wp) :: bbox(2, 2) = 0          !< (min, max) of x in column 1 and of y in column 2 [mm]
+      !> id of each element in the mesh file (Gmsh tag), for messages; absent: its index
+      integer, allocatable :: elem_id(:)
+      !> named boundary groups (Gmsh physical curves): names, and their edges (2, nseg) as
+      !> a list per group: edges of group g are gseg(:, gstart(g):gstart(g+1)-1)
+      character(len=64), allocatable :: group_name(:)
+      integer, allocatable :: gstart(:)
+      integer, allocatable :: gseg(:, :)
+      logical, allocatable :: gboundary(:)   !< the group edge belongs to one element only
    contains
       procedure :: init_rectangle => mesh_init_rectangle
       procedure :: init_arrays => mesh_init_arrays
@@ -27,6 +36,13 @@ module contact2d_mesh
       procedure :: select_segments => mesh_select_segments
       procedure :: element_coordinates => mesh_element_coordinates
       procedure :: tolerance => mesh_tolerance
+      procedure :: set_groups => mesh_set_groups
+      procedure :: group_index => mesh_group_index
+      procedure :: group_list => mesh_group_list
+      procedure :: select_group => mesh_select_group
+      procedure :: group_chain => mesh_group_chain
+      procedure :: orient => mesh_orient
+      procedure :: id_of => mesh_id_of
    end type mesh_t
 
 contains
@@ -171,4 +187,253 @@ contains
       end do
       seg = tmp(:, 1:n)
    end subroutine mesh_select_segments
+   !> Named boundary groups: names(g) holds the edges seg(:, gstart(g):gstart(g+1)-1).
+   subroutine mesh_set_groups(this, names, gstart, seg)
+      class(mesh_t), intent(inout) :: this
+      character(len=*), intent(in) :: names(:)
+      integer, intent(in) :: gstart(:), seg(:, :)
+      allocate (this%group_name(size(names)))
+      this%group_name = names
+      this%gstart = gstart
+      this%gseg = seg
+   end subroutine mesh_set_groups
+
+   !> Index of the group called `name` (exact match), 0 if none.
+   pure integer function mesh_group_index(this, name) result(g)
+      class(mesh_t), intent(in) :: this
+      character(len=*), intent(in) :: name
+      integer :: k
+      g = 0
+      if (.not. allocated(this%group_name)) return
+      do k = 1, size(this%group_name)
+         if (trim(this%group_name(k)) == trim(name)) then
+            g = k
+            return
+         end if
+      end do
+   end function mesh_group_index
+
+   !> The group names as "'a', 'b'" (or 'none' when the mesh has none).
+   function mesh_group_list(this) result(s)
+      class(mesh_t), intent(in) :: this
+      character(len=:), allocatable :: s
+      integer :: k
+      s = ''
+      if (allocated(this%group_name)) then
+         do k = 1, size(this%group_name)
+            if (k > 1) s = s//', '
+            s = s//"'"//trim(this%group_name(k))//"'"
+         end do
+      end if
+      if (len(s) == 0) s = 'none (the mesh has no physical curve)'
+   end function mesh_group_list
+
+   !> Id of element e in the mesh file (its index when the mesh was not read from a file).
+   pure integer function mesh_id_of(this, e) result(id)
+      class(mesh_t), intent(in) :: this
+      integer, intent(in) :: e
+      id = e
+      if (allocated(this%elem_id)) id = this%elem_id(e)
+   end function mesh_id_of
+
+   !> Edges of group g with both nodes in [range(1), range(2)] x [range(3), range(4)] (closed, with
+   !> the mesh tolerance), oriented as their element runs counter-clockwise (the body on the left),
+   !> and the distinct nodes of the group inside the range, in increasing id.
+   subroutine mesh_select_group(this, g, range, nodes, seg, interior)
+      class(mesh_t), intent(in) :: this
+      integer, intent(in) :: g
+      real(wp), intent(in) :: range(4)
+      integer, allocatable, intent(out) :: nodes(:), seg(:, :)
+      !> number of selected edges that are not boundary edges (held by two elements)
+      integer, intent(out), optional :: interior
+      logical :: inside(this%nnode), mark(this%nnode)
+      logical, allocatable :: keep(:)
+      real(wp) :: tol
+      integer :: s, i
+      tol = this%tolerance()
+      inside = this%x(1, :) >= range(1) - tol .and. this%x(1, :) <= range(2) + tol &
+               .and. this%x(2, :) >= range(3) - tol .and. this%x(2, :) <= range(4) + tol
+      associate (gs => this%gseg(:, this%gstart(g):this%gstart(g + 1) - 1))
+         allocate (keep(size(gs, 2)))
+         do s = 1, size(gs, 2)
+            keep(s) = inside(gs(1, s)) .and. inside(gs(2, s))
+         end do
+         allocate (seg(2, count(keep)))
+         seg(1, :) = pack(gs(1, :), keep)
+         seg(2, :) = pack(gs(2, :), keep)
+         if (present(interior)) then
+            interior = 0
+            if (allocated(this%gboundary)) &
+               interior = count(keep .and. .not. this%gboundary(this%gstart(g):this%gstart(g + 1) - 1))
+         end if
+      end associate
+      ! the nodes: every node of the group inside the range (a single node is a selection too)
+      mark = .false.
+      associate (gs => this%gseg(:, this%gstart(g):this%gstart(g + 1) - 1))
+         mark(pack(gs, .true.)) = .true.
+      end associate
+      nodes = pack([(i, i=1, this%nnode)], mark .and. inside)
+   end subroutine mesh_select_group
+
+   !> The edges of group g within the range as one chain of boundary edges, nodes in order
+   !> along the boundary: counter-clockwise (the body on the left) or, with reverse, clockwise.
+   !> stat /= 0 with a message if the selection is not one open chain of boundary edges.
+   subroutine mesh_group_chain(this, g, range, reverse, nodes, stat, errmsg)
+      class(mesh_t), intent(in) :: this
+      integer, intent(in) :: g
+      real(wp), intent(in) :: range(4)
+      logical, intent(in) :: reverse
+      integer, allocatable, intent(out) :: nodes(:)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer, allocatable :: sel(:), seg(:, :), nxt(:), nin(:)
+      integer :: s, n, start, k, interior
+      stat = 1
+      call this%select_group(g, range, sel, seg, interior)
+      if (size(seg, 2) == 0) then
+         errmsg = 'holds no element edge within the range'
+         return
+      end if
+      if (interior > 0) then
+         errmsg = 'is not one chain of boundary edges: '//str(interior)//' of its edges lie inside the mesh '// &
+                  '(held by two elements)'
+         return
+      end if
+      allocate (nxt(this%nnode), nin(this%nnode))
+      nxt = 0
+      nin = 0
+      do s = 1, size(seg, 2)
+         if (nxt(seg(1, s)) /= 0) then
+            errmsg = 'is not one chain of boundary edges: node '//str(seg(1, s))//' starts two edges '// &
+                     '(an interior edge, a branch, or the same edge twice)'
+            return
+         end if
+         nxt(seg(1, s)) = seg(2, s)
+         nin(seg(2, s)) = nin(seg(2, s)) + 1
+      end do
+      start = 0
+      do k = 1, size(sel)
+         n = sel(k)
+         if (nin(n) == 0) then
+            if (start /= 0) then
+               errmsg = 'is not one connected chain of boundary edges (it has at least two pieces, '// &
+                        'starting at nodes '//str(start)//' and '//str(n)//')'
+               return
+            end if
+            start = n
+         end if
+      end do
+      if (start == 0) then
+         errmsg = 'is a closed loop; Gamma_c must be an open chain (split the curve or give a range)'
+         return
+      end if
+      allocate (nodes(size(seg, 2) + 1))
+      nodes(1) = start
+      do k = 2, size(nodes)
+         nodes(k) = nxt(nodes(k - 1))
+         if (nodes(k) == 0) then
+            errmsg = 'is not one connected chain of boundary edges (it has at least two pieces)'
+            return
+         end if
+      end do
+      if (reverse) nodes = nodes(size(nodes):1:-1)
+      stat = 0
+      errmsg = ''
+   end subroutine mesh_group_chain
+
+   !> Make every element counter-clockwise (clockwise ones are reversed; nflip counts them),
+   !> refuse an element whose Jacobian is not positive at one of its 2 x 2 Gauss points, and
+   !> orient each group edge as its element runs (the body on its left). stat /= 0 with a
+   !> message naming the element (its id in the mesh file) or the edge.
+   subroutine mesh_orient(this, nflip, stat, errmsg)
+      class(mesh_t), intent(inout) :: this
+      integer, intent(out) :: nflip
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      real(wp), parameter :: gp = 1/sqrt(3.0_wp)
+      real(wp), parameter :: xi(4) = [-1, 1, 1, -1], eta(4) = [-1, -1, 1, 1]
+      real(wp) :: xe(2, 4), jac(2, 2), area
+      integer, allocatable :: adj_start(:), adj_elem(:), fill(:)
+      integer :: e, q, a, b, k, s, n, hold
+      logical :: forward
+
+      stat = 1
+      nflip = 0
+      do e = 1, this%nel
+         xe = this%x(:, this%conn(:, e))
+         area = 0.5_wp*((xe(1, 3) - xe(1, 1))*(xe(2, 4) - xe(2, 2)) - (xe(1, 4) - xe(1, 2))*(xe(2, 3) - xe(2, 1)))
+         if (area < 0) then
+            this%conn(:, e) = this%conn([1, 4, 3, 2], e)
+            nflip = nflip + 1
+            xe = this%x(:, this%conn(:, e))
+         end if
+         do q = 1, 4
+            ! dx/dxi and dx/deta at Gauss point (xi(q), eta(q)) / sqrt(3)
+            jac = 0
+            do a = 1, 4
+               jac(:, 1) = jac(:, 1) + 0.25_wp*xe(:, a)*xi(a)*(1 + eta(a)*eta(q)*gp)
+               jac(:, 2) = jac(:, 2) + 0.25_wp*xe(:, a)*eta(a)*(1 + xi(a)*xi(q)*gp)
+            end do
+            if (.not. jac(1, 1)*jac(2, 2) - jac(1, 2)*jac(2, 1) > 0) then
+               errmsg = 'element '//str(this%id_of(e))//' has a non-positive Jacobian at a Gauss point '// &
+                        '(degenerate, self-intersecting or too distorted quadrilateral)'
+               return
+            end if
+         end do
+      end do
+      if (.not. allocated(this%gseg)) then
+         stat = 0
+         errmsg = ''
+         return
+      end if
+      ! node -> elements, to find the element of each group edge
+      allocate (adj_start(this%nnode + 1), adj_elem(4*this%nel), fill(this%nnode))
+      adj_start = 0
+      do e = 1, this%nel
+         do a = 1, 4
+            adj_start(this%conn(a, e) + 1) = adj_start(this%conn(a, e) + 1) + 1
+         end do
+      end do
+      adj_start(1) = 1
+      do n = 1, this%nnode
+         adj_start(n + 1) = adj_start(n + 1) + adj_start(n)
+      end do
+      fill = adj_start(1:this%nnode)
+      do e = 1, this%nel
+         do a = 1, 4
+            adj_elem(fill(this%conn(a, e))) = e
+            fill(this%conn(a, e)) = fill(this%conn(a, e)) + 1
+         end do
+      end do
+      allocate (this%gboundary(size(this%gseg, 2)))
+      do s = 1, size(this%gseg, 2)
+         n = this%gseg(1, s)
+         hold = 0
+         forward = .true.
+         do k = adj_start(n), adj_start(n + 1) - 1
+            e = adj_elem(k)
+            do a = 1, 4
+               b = mod(a, 4) + 1
+               if (this%conn(a, e) == this%gseg(1, s) .and. this%conn(b, e) == this%gseg(2, s)) then
+                  hold = hold + 1
+                  forward = .true.
+               else if (this%conn(b, e) == this%gseg(1, s) .and. this%conn(a, e) == this%gseg(2, s)) then
+                  hold = hold + 1
+                  forward = .false.
+               end if
+            end do
+         end do
+         if (hold == 0) then
+            errmsg = 'the boundary edge ('//str(this%gseg(1, s))//', '//str(this%gseg(2, s))// &
+                     ') of a physical curve is not an edge of any quadrilateral'
+            return
+         end if
+         ! an edge held by one element is a boundary edge: orient it with that element; an
+         ! interior edge (two elements) keeps its direction (usable for Dirichlet data only)
+         if (hold == 1 .and. .not. forward) this%gseg(:, s) = this%gseg([2, 1], s)
+         this%gboundary(s) = hold == 1
+      end do
+      stat = 0
+      errmsg = ''
+   end subroutine mesh_orient
 end module contact2d_mesh

@@ -141,11 +141,11 @@ contains
          k = this%nc
          do i = 1, this%nc
             this%cnode(i) = i
-            this%bdir(:, i) = ct%normal
+            this%bdir(:, i) = ct%normal(:, i)
             if (all(free(:, ct%node(i)) > 0)) then
                k = k + 1
                this%cnode(k) = i
-               this%bdir(:, k) = ct%tangent
+               this%bdir(:, k) = ct%tangent(:, i)
                this%limit(k - this%nc) = ct%limit(i)
             end if
          end do
@@ -490,8 +490,8 @@ contains
       do i = 1, this%nc
          n = model%contact%node(i)
          do c = 1, 2
-            if (this%dof(c, n) > 0) this%fc(c, n) = -this%fn(i)*model%contact%normal(c) - &
-                                                     this%ft(i)*model%contact%tangent(c)
+            if (this%dof(c, n) > 0) this%fc(c, n) = -this%fn(i)*model%contact%normal(c, i) - &
+                                                     this%ft(i)*model%contact%tangent(c, i)
          end do
       end do
       this%u = up
@@ -538,7 +538,7 @@ contains
       stat = 0
       errmsg = ''
       do i = 1, this%nc
-         d(i) = dot_product(this%u(:, model%contact%node(i)), model%contact%normal) - model%contact%gap(i)
+         d(i) = dot_product(this%u(:, model%contact%node(i)), model%contact%normal(:, i)) - model%contact%gap(i)
       end do
       if (this%p0) then
          call d_apply(model, d, y(1:this%nc))
@@ -711,7 +711,7 @@ contains
       umax = max(maxval(abs(this%u)), tiny(1.0_wp))
       if (this%nc > 0) then
          do i = 1, this%nc
-            d(i) = dot_product(this%u(:, model%contact%node(i)), model%contact%normal) - model%contact%gap(i)
+            d(i) = dot_product(this%u(:, model%contact%node(i)), model%contact%normal(:, i)) - model%contact%gap(i)
          end do
          if (this%p0) then
             call d_apply(model, d, e)
@@ -729,7 +729,7 @@ contains
             do k = 1, this%nt
                i = this%cnode(this%nc + k)
                n = model%contact%node(i)
-               psi = dot_product(this%u(:, n) - uprev(:, n), model%contact%tangent)
+               psi = dot_product(this%u(:, n) - uprev(:, n), model%contact%tangent(:, i))
                associate (ft => this%ft(i), s => this%limit(k))
                   if (this%scope_contact .and. this%fn(i) <= 0) then
                      ! no friction on this node: F_t must vanish

@@ -28,6 +28,7 @@ module contact2d_loading
       procedure :: add_curve => loading_add_curve
       procedure :: prescribe => loading_prescribe
       procedure :: add_traction => loading_add_traction
+      procedure :: add_traction_rotated => loading_add_traction_rotated
       procedure :: finalize => loading_finalize
       procedure :: curve_values => loading_curve_values
       procedure :: end_time => loading_end_time
@@ -105,6 +106,39 @@ contains
       end do
       this%ntrac = size(this%tnode)
    end subroutine loading_add_traction
+
+   !> Add a uniform traction (per unit value of curve id) along each segment's outward normal n
+   !> (or, with tangential, along t = (-n2, n1)): consistent nodal forces value (L/2) n at both
+   !> ends of each straight edge (docs/geometry.md). Segments run with the body on their left,
+   !> so n = (e2, -e1) with e the unit edge direction.
+   subroutine loading_add_traction_rotated(this, x, seg, tangential, id)
+      class(loading_t), intent(inout) :: this
+      real(wp), intent(in) :: x(:, :)       !< node coordinates (2, nnode) [mm]
+      integer, intent(in) :: seg(:, :)      !< segments (2, nseg), body on the left
+      logical, intent(in) :: tangential
+      integer, intent(in) :: id
+      integer :: s, a, c
+      real(wp) :: d(2), len_, n(2), dir(2)
+      do s = 1, size(seg, 2)
+         d = x(:, seg(2, s)) - x(:, seg(1, s))
+         len_ = norm2(d)
+         n = [d(2), -d(1)]/len_
+         if (tangential) then
+            dir = [-n(2), n(1)]
+         else
+            dir = n
+         end if
+         do a = 1, 2
+            do c = 1, 2
+               this%tnode = [this%tnode, seg(a, s)]
+               this%tcomp = [this%tcomp, c]
+               this%tcurve = [this%tcurve, id]
+               this%tweight = [this%tweight, 0.5_wp*len_*dir(c)]
+            end do
+         end do
+      end do
+      this%ntrac = size(this%tnode)
+   end subroutine loading_add_traction_rotated
 
    !> Drop traction entries on prescribed dofs (the reaction there takes the load).
    subroutine loading_finalize(this)

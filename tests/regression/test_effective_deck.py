@@ -22,6 +22,8 @@ CASES = [
      [("mesh", 0, "level", 1), ("solver", 0, "dt_factor", 0.83333333333333337)]),
     ("tresca_p1", "tresca_sliding_p1.nml", ["--set", "contact:threshold=93.123456789012345"],
      [("contact", 0, "threshold", 93.123456789012345)]),
+    ("coulomb_p0", "coulomb_sliding_p0.nml", ["--set", "contact:friction_coefficient=0.31234567890123457"],
+     [("contact", 0, "friction_coefficient", 0.31234567890123457)]),
     ("baillet_p0", "baillet_sassi_2002_p0.nml",
      ["--set", "mesh:level=1", "--set", "dirichlet#3:values=-1.2345678901234567e-3"],
      [("mesh", 0, "level", 1), ("dirichlet", 3, "values", [-1.2345678901234567e-3])]),

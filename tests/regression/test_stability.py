@@ -5,6 +5,8 @@ traps would kill a run that let the energy grow to overflow.
 --scene elastic      inputs/uniaxial_compression.nml (no contact)
 --scene contact_p1   inputs/baillet_sassi_2002_p1.nml at mesh:level=2 (contact, Tresca as the deck)
 --scene contact_p0   inputs/baillet_sassi_2002_p0.nml at mesh:level=2
+--scene contact_p1_coulomb, contact_p0_coulomb: the same with Coulomb friction mu = 0.3 instead of
+                     Tresca (issue 11: the limit mu F_n,i follows the normal force of each step)
 
 Facts checked:
 - dt_critical is the element bound 2/omega_e; for square Q1 elements of side h it has the closed
@@ -24,6 +26,8 @@ import numpy as np
 
 import c2dtest
 
+COULOMB = ["--set", "contact:friction='coulomb'", "--set", "contact:threshold=0",
+           "--set", "contact:friction_coefficient=0.3"]
 SCENES = {
     "elastic": ("uniaxial_compression.nml", []),
     "contact_p1": ("baillet_sassi_2002_p1.nml", ["--set", "mesh:level=2"]),
@@ -32,6 +36,8 @@ SCENES = {
                                 "contact:friction='frictionless'", "--set", "contact:threshold=0"]),
     "contact_p0_frictionless": ("baillet_sassi_2002_p0.nml", ["--set", "mesh:level=2", "--set",
                                 "contact:friction='frictionless'", "--set", "contact:threshold=0"]),
+    "contact_p1_coulomb": ("baillet_sassi_2002_p1.nml", ["--set", "mesh:level=2"] + COULOMB),
+    "contact_p0_coulomb": ("baillet_sassi_2002_p0.nml", ["--set", "mesh:level=2"] + COULOMB),
 }
 STEPS = 20000
 # t_end far beyond 20 000 steps so that max_steps is the limit that binds

@@ -1,0 +1,87 @@
+"""Hertz measures of a contact2d run of inputs/hertz_*.nml (half models, symmetry on x = 0).
+
+    from hertz import measure
+    m = measure("hertz_indenter_p1.h5")   # dict: P, a, p0, p0_fe, a_fe, h_edge, l2, l2_rel, ...
+
+With the run's own total normal force P (per unit thickness, twice the half model's sum):
+    E* = E / (1 - nu^2),  a = sqrt(4 P R / (pi E*)),  p0 = 2 P / (pi a),  p(x) = p0 sqrt(1 - x^2/a^2).
+The contact pressure is the program's multiplier field (/final/contact/pressure): P1 per node
+(piecewise linear along Gamma_c), P0 per dual cell (constant between the midpoints of the
+adjacent segments). Its L2 error on Gamma_c is integrated segment by segment with 64 midpoint
+samples per segment against the exact p at the horizontal coordinate x of each sample.
+Only numpy and h5py.
+"""
+import h5py
+import numpy as np
+
+
+def _attr(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def _deck_value(text, group, name):
+    """A value of the effective deck (one 'name = value' line inside &group)."""
+    inside = False
+    for line in text.splitlines():
+        s = line.strip()
+        if s.startswith("&"):
+            inside = s[1:].strip().lower() == group
+            continue
+        if inside and s.startswith(name + " ") or inside and s.startswith(name + "="):
+            return s.split("=", 1)[1].strip()
+    raise KeyError("%s:%s" % (group, name))
+
+
+def hertz(P, R, E, nu):
+    """(a, p0) of 2D Hertz for total force P per unit thickness."""
+    estar = E / (1 - nu ** 2)
+    a = np.sqrt(4 * P * R / (np.pi * estar))
+    return a, 2 * P / (np.pi * a)
+
+
+def measure(path):
+    with h5py.File(path, "r") as f:
+        eff = _attr(f.attrs["effective_deck"])
+        x = f["mesh/coordinates"][()]
+        nodes = f["contact/nodes"][()] - 1
+        fn = f["final/contact/normal_force"][()]
+        p = f["final/contact/pressure"][()]
+        status = f["final/contact/status"][()]
+        mult = _attr(f.attrs["multiplier"])
+        conv = int(f.attrs["converged"])
+        nel = int(f.attrs["element_count"])
+    E = float(_deck_value(eff, "material", "young"))
+    nu = float(_deck_value(eff, "material", "poisson"))
+    if "'circle'" in eff:
+        R = float(_deck_value(eff, "contact", "obstacle_radius"))
+    else:
+        # the half-disk: its radius is the height of its flat side above the contact point
+        R = float(np.max(x[:, 1]) - np.min(x[:, 1]))
+    P = 2 * float(np.sum(fn))
+    a, p0 = hertz(P, R, E, nu)
+    xc = x[nodes]
+    xs = xc[:, 0]
+    seg = np.linalg.norm(np.diff(xc, axis=0), axis=1)
+    inc = np.nonzero(status > 0)[0]
+    last = int(inc.max())
+    # the contact half-width of the run: the farthest node in contact; one boundary element
+    # there = the longer of the edges next to it
+    a_fe = float(xs[last])
+    h_edge = float(max(seg[max(last - 1, 0)], seg[min(last, len(seg) - 1)]))
+    # L2 error of p on Gamma_c
+    t = (np.arange(64) + 0.5) / 64
+    err2 = 0.0
+    ref2 = 0.0
+    for i in range(len(seg)):
+        xq = xs[i] + t * (xs[i + 1] - xs[i])
+        if mult == "P0":
+            ph = np.where(t < 0.5, p[i], p[i + 1])
+        else:
+            ph = p[i] + t * (p[i + 1] - p[i])
+        pe = p0 * np.sqrt(np.clip(1 - (xq / a) ** 2, 0, None))
+        w = seg[i] / 64
+        err2 += float(np.sum((ph - pe) ** 2) * w)
+        ref2 += float(np.sum(pe ** 2) * w)
+    return dict(P=P, R=R, a=a, p0=p0, p0_fe=float(p[0]), a_fe=a_fe, h_edge=h_edge,
+                h_min=float(seg.min()), l2=np.sqrt(err2), l2_rel=np.sqrt(err2 / ref2),
+                converged=conv, multiplier=mult, xs=xs, p=p, nel=nel)

@@ -1,0 +1,42 @@
+!> The friction-law seam (docs/friction.md section 2): an abstract law that turns this step's
+!> nodal normal forces F_n into each contact node's tangential limit [N]. The contact step
+!> (SPEC section 4, step 3, as extended in docs/friction.md) finds the normal forces first,
+!> calls limits() once, then projects the trial stick forces onto [-limit_i, limit_i] node by
+!> node. Members: contact2d_friction_tresca (s_i w_i), contact2d_friction_coulomb (mu F_n,i);
+!> the factory contact2d_friction_factory makes one from the deck's contact:friction.
+module contact2d_friction
+   use contact2d_kinds, only: wp
+   implicit none
+   private
+   public :: friction_law_t
+
+   !> A friction law: per-node tangential limits from per-node normal forces.
+   type, abstract :: friction_law_t
+      character(len=16) :: label = ''   !< the deck's name of the law, set by the member's init
+   contains
+      !> Fill limit(i) >= 0 [N] from this step's nodal normal forces fn(i) >= 0 [N] and the
+      !> measure by which node i is judged in contact, closed(i) > 0 (SPEC section 3: F_n,i for P1,
+      !> the node's own dual-cell multiplier mu_n,i for P0).
+      procedure(friction_law_limits), deferred :: limits
+      !> The deck's name of the law ('tresca', 'coulomb').
+      procedure :: name => friction_law_name
+   end type friction_law_t
+
+   abstract interface
+      pure subroutine friction_law_limits(this, fn, closed, limit)
+         import :: friction_law_t, wp
+         class(friction_law_t), intent(in) :: this
+         real(wp), intent(in) :: fn(:)       !< nodal normal forces of this step [N]
+         real(wp), intent(in) :: closed(:)   !< in contact where > 0 (P1: fn, P0: mu_n per dual cell)
+         real(wp), intent(out) :: limit(:)   !< tangential limits of this step [N]
+      end subroutine friction_law_limits
+   end interface
+
+contains
+
+   pure function friction_law_name(this) result(name)
+      class(friction_law_t), intent(in) :: this
+      character(len=:), allocatable :: name
+      name = trim(this%label)
+   end function friction_law_name
+end module contact2d_friction

@@ -1,0 +1,49 @@
+!> Tresca friction (SPEC section 3): the limit of node i is s_i w_i, independent of the normal
+!> force; with tresca_scope = 'contact' it is 0 on a node that carries no normal force.
+!> A member of the friction-law seam (contact2d_friction, docs/friction.md section 2).
+module contact2d_friction_tresca
+   use contact2d_kinds, only: wp
+   use contact2d_friction, only: friction_law_t
+   implicit none
+   private
+   public :: tresca_law_t
+
+   !> Nodal Tresca: limit_i = s_i w_i (0 where the tangential dof is prescribed).
+   type, extends(friction_law_t) :: tresca_law_t
+      real(wp), allocatable :: bound(:)      !< s_i w_i [N]
+      logical :: in_contact_only = .false.   !< tresca_scope = 'contact'
+   contains
+      procedure :: init => tresca_law_init
+      procedure :: limits => tresca_law_limits
+   end type tresca_law_t
+
+contains
+
+   !> bound: s_i w_i per contact node [N]; in_contact_only: tresca_scope = 'contact'.
+   subroutine tresca_law_init(this, bound, in_contact_only)
+      class(tresca_law_t), intent(out) :: this
+      real(wp), intent(in) :: bound(:)
+      logical, intent(in) :: in_contact_only
+      this%label = 'tresca'
+      this%bound = bound
+      this%in_contact_only = in_contact_only
+   end subroutine tresca_law_init
+
+   !> limit_i = s_i w_i, or 0 where node i is not in contact with tresca_scope = 'contact'
+   !> (SPEC section 3: judged like the status, per dual cell for P0). F_n itself plays no part.
+   pure subroutine tresca_law_limits(this, fn, closed, limit)
+      class(tresca_law_t), intent(in) :: this
+      real(wp), intent(in) :: fn(:)
+      real(wp), intent(in) :: closed(:)
+      real(wp), intent(out) :: limit(:)
+      integer :: i
+      if (size(fn) /= size(limit)) error stop 'tresca_law_limits: fn and limit differ in size'
+      if (this%in_contact_only) then
+         do i = 1, size(limit)
+            limit(i) = merge(this%bound(i), 0.0_wp, closed(i) > 0)
+         end do
+      else
+         limit = this%bound
+      end if
+   end subroutine tresca_law_limits
+end module contact2d_friction_tresca

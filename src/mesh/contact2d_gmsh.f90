@@ -1,0 +1,622 @@
+!> Quadrilateral meshes from Gmsh through its own library (the C API of libgmsh, gmshc.h, bound
+!> with iso_c_binding; docs/geometry.md, the extension of SPEC sections 2 and 8).
+!>
+!> A .geo file is meshed here (2D, then refined `level` times by Gmsh: each quad split in four,
+!> new boundary nodes on the geometry); a .msh file (any version Gmsh reads) is taken as it is,
+!> then refined the same way. Only 4-node quadrilaterals are accepted. Physical curves become
+!> named boundary groups of 2-node edges. Nodes are renumbered 1..n in increasing Gmsh tag,
+!> keeping only the nodes of the quadrilaterals (a circle's centre point carries no mass).
+module contact2d_gmsh
+   use, intrinsic :: iso_c_binding, only: c_int, c_size_t, c_double, c_char, c_ptr, c_null_ptr, &
+                                          c_null_char, c_f_pointer, c_associated, c_funptr, &
+                                          c_f_procpointer
+   use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, ieee_set_flag, &
+                                            ieee_all, ieee_usual
+   use contact2d_gmsh_config, only: gmsh_library_path
+   use contact2d_kinds, only: wp
+   use contact2d_strings, only: str
+   use contact2d_mesh, only: mesh_t
+   implicit none
+   private
+   public :: gmsh_read
+
+   !> Gmsh element types used here (Gmsh's numbering).
+   integer(c_int), parameter :: type_line2 = 1, type_quad4 = 3
+
+   !> The Gmsh C API functions used here (gmshc.h of Gmsh 4.8.4), as abstract interfaces: the
+   !> library is loaded at run time (dlopen) only when a deck names a Gmsh file, so that runs
+   !> on the built-in mesh do not pay for loading libgmsh and its dependencies.
+   abstract interface
+      subroutine gmshInitialize_i(argc, argv, readConfigFiles, ierr) bind(C)
+         import :: c_int, c_ptr
+         integer(c_int), value :: argc
+         type(c_ptr), value :: argv
+         integer(c_int), value :: readConfigFiles
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshInitialize_i
+      subroutine gmshFinalize_i(ierr) bind(C)
+         import :: c_int
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshFinalize_i
+      subroutine gmshOpen_i(fileName, ierr) bind(C)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: fileName(*)
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshOpen_i
+      subroutine gmshOptionSetNumber_i(name, value, ierr) bind(C)
+         import :: c_int, c_char, c_double
+         character(kind=c_char), intent(in) :: name(*)
+         real(c_double), value :: value
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshOptionSetNumber_i
+      subroutine gmshModelMeshGenerate_i(dim, ierr) bind(C)
+         import :: c_int
+         integer(c_int), value :: dim
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshModelMeshGenerate_i
+      subroutine gmshModelMeshRefine_i(ierr) bind(C)
+         import :: c_int
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshModelMeshRefine_i
+      subroutine gmshModelMeshGetNodes_i(nodeTags, nodeTags_n, coord, coord_n, pcoord, pcoord_n, dim, tag, &
+                                       includeBoundary, returnParametricCoord, ierr) bind(C)
+         import :: c_int, c_ptr, c_size_t
+         type(c_ptr), intent(out) :: nodeTags, coord, pcoord
+         integer(c_size_t), intent(out) :: nodeTags_n, coord_n, pcoord_n
+         integer(c_int), value :: dim, tag, includeBoundary, returnParametricCoord
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshModelMeshGetNodes_i
+      subroutine gmshModelMeshGetElementTypes_i(elementTypes, elementTypes_n, dim, tag, ierr) &
+         bind(C)
+         import :: c_int, c_ptr, c_size_t
+         type(c_ptr), intent(out) :: elementTypes
+         integer(c_size_t), intent(out) :: elementTypes_n
+         integer(c_int), value :: dim, tag
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshModelMeshGetElementTypes_i
+      subroutine gmshModelMeshGetElementsByType_i(elementType, elementTags, elementTags_n, nodeTags, nodeTags_n, &
+                                                tag, task, numTasks, ierr) bind(C)
+         import :: c_int, c_ptr, c_size_t
+         integer(c_int), value :: elementType
+         type(c_ptr), intent(out) :: elementTags, nodeTags
+         integer(c_size_t), intent(out) :: elementTags_n, nodeTags_n
+         integer(c_int), value :: tag
+         integer(c_size_t), value :: task, numTasks
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshModelMeshGetElementsByType_i
+      subroutine gmshModelMeshGetElementProperties_i(elementType, elementName, dim, order, numNodes, &
+                                                   localNodeCoord, localNodeCoord_n, numPrimaryNodes, ierr) &
+         bind(C)
+         import :: c_int, c_ptr, c_size_t
+         integer(c_int), value :: elementType
+         type(c_ptr), intent(out) :: elementName
+         integer(c_int), intent(out) :: dim, order, numNodes
+         type(c_ptr), intent(out) :: localNodeCoord
+         integer(c_size_t), intent(out) :: localNodeCoord_n
+         integer(c_int), intent(out) :: numPrimaryNodes
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshModelMeshGetElementProperties_i
+      subroutine gmshModelGetPhysicalGroups_i(dimTags, dimTags_n, dim, ierr) bind(C)
+         import :: c_int, c_ptr, c_size_t
+         type(c_ptr), intent(out) :: dimTags
+         integer(c_size_t), intent(out) :: dimTags_n
+         integer(c_int), value :: dim
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshModelGetPhysicalGroups_i
+      subroutine gmshModelGetEntitiesForPhysicalGroup_i(dim, tag, tags, tags_n, ierr) &
+         bind(C)
+         import :: c_int, c_ptr, c_size_t
+         integer(c_int), value :: dim, tag
+         type(c_ptr), intent(out) :: tags
+         integer(c_size_t), intent(out) :: tags_n
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshModelGetEntitiesForPhysicalGroup_i
+      subroutine gmshModelGetPhysicalName_i(dim, tag, name, ierr) bind(C)
+         import :: c_int, c_ptr
+         integer(c_int), value :: dim, tag
+         type(c_ptr), intent(out) :: name
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshModelGetPhysicalName_i
+      subroutine gmshLoggerGetLastError_i(error, ierr) bind(C)
+         import :: c_int, c_ptr
+         type(c_ptr), intent(out) :: error
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshLoggerGetLastError_i
+      subroutine gmshFree_i(p) bind(C)
+         import :: c_ptr
+         type(c_ptr), value :: p
+      end subroutine gmshFree_i
+   end interface
+
+   !> Symbols of the loaded library (set once by load_gmsh; the library stays loaded).
+   procedure(gmshInitialize_i), pointer :: gmshInitialize => null()
+   procedure(gmshFinalize_i), pointer :: gmshFinalize => null()
+   procedure(gmshOpen_i), pointer :: gmshOpen => null()
+   procedure(gmshOptionSetNumber_i), pointer :: gmshOptionSetNumber => null()
+   procedure(gmshModelMeshGenerate_i), pointer :: gmshModelMeshGenerate => null()
+   procedure(gmshModelMeshRefine_i), pointer :: gmshModelMeshRefine => null()
+   procedure(gmshModelMeshGetNodes_i), pointer :: gmshModelMeshGetNodes => null()
+   procedure(gmshModelMeshGetElementTypes_i), pointer :: gmshModelMeshGetElementTypes => null()
+   procedure(gmshModelMeshGetElementsByType_i), pointer :: gmshModelMeshGetElementsByType => null()
+   procedure(gmshModelMeshGetElementProperties_i), pointer :: gmshModelMeshGetElementProperties => null()
+   procedure(gmshModelGetPhysicalGroups_i), pointer :: gmshModelGetPhysicalGroups => null()
+   procedure(gmshModelGetEntitiesForPhysicalGroup_i), pointer :: gmshModelGetEntitiesForPhysicalGroup => null()
+   procedure(gmshModelGetPhysicalName_i), pointer :: gmshModelGetPhysicalName => null()
+   procedure(gmshLoggerGetLastError_i), pointer :: gmshLoggerGetLastError => null()
+   procedure(gmshFree_i), pointer :: gmshFree => null()
+
+   interface
+      function c_dlopen(filename, flag) bind(C, name='dlopen') result(handle)
+         import :: c_ptr, c_char, c_int
+         character(kind=c_char), intent(in) :: filename(*)
+         integer(c_int), value :: flag
+         type(c_ptr) :: handle
+      end function c_dlopen
+      function c_dlsym(handle, symbol) bind(C, name='dlsym') result(fun)
+         import :: c_ptr, c_char, c_funptr
+         type(c_ptr), value :: handle
+         character(kind=c_char), intent(in) :: symbol(*)
+         type(c_funptr) :: fun
+      end function c_dlsym
+      function c_dlerror() bind(C, name='dlerror') result(msg)
+         import :: c_ptr
+         type(c_ptr) :: msg
+      end function c_dlerror
+      function c_strlen(s) bind(C, name='strlen') result(n)
+         import :: c_ptr, c_size_t
+         type(c_ptr), value :: s
+         integer(c_size_t) :: n
+      end function c_strlen
+   end interface
+
+   !> RTLD_NOW | RTLD_GLOBAL (glibc values)
+   integer(c_int), parameter :: rtld_flags = int(z'102', c_int)
+   !> library names tried in turn: the one CMake found, then its usual sonames
+   character(len=*), parameter :: library_names(3) = [character(len=256) :: gmsh_library_path, &
+                                                      'libgmsh.so.4.8', 'libgmsh.so']
+   type(c_ptr), save :: handle = c_null_ptr
+
+contains
+
+   !> Read (and for a .geo, mesh) `path`, refine it `level` times and fill `mesh` with its quads
+   !> (orientation not yet checked: mesh%orient does that) and named boundary groups.
+   subroutine gmsh_read(path, level, mesh, stat, errmsg)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: level
+      type(mesh_t), intent(inout) :: mesh
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      logical :: halting(size(ieee_usual))
+      ! Gmsh's own arithmetic may raise IEEE flags (e.g. a 0/0 it handles itself): no floating-
+      ! point traps while it runs (the Debug build traps invalid, zero and overflow), restored after
+      call ieee_get_halting_mode(ieee_usual, halting)
+      call ieee_set_halting_mode(ieee_usual, .false.)
+      call read_untrapped(path, level, mesh, stat, errmsg)
+      call ieee_set_flag(ieee_all, .false.)
+      call ieee_set_halting_mode(ieee_usual, halting)
+   end subroutine gmsh_read
+
+   subroutine read_untrapped(path, level, mesh, stat, errmsg)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: level
+      type(mesh_t), intent(inout) :: mesh
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer(c_int) :: ierr, ierr2
+      logical :: exists
+      integer :: k
+
+      stat = 1
+      inquire (file=path, exist=exists)
+      if (.not. exists) then
+         errmsg = "mesh:file = '"//path//"': no such file"
+         return
+      end if
+      call load_gmsh(stat, errmsg)
+      if (stat /= 0) return
+      stat = 1
+      call gmshInitialize(0_c_int, c_null_ptr, 0_c_int, ierr)
+      if (ierr /= 0) then
+         errmsg = 'mesh: the Gmsh library failed to initialise (ierr = '//str(int(ierr))//')'
+         return
+      end if
+      ! quiet: Gmsh's own log stays off the terminal; its last error is quoted instead
+      call gmshOptionSetNumber(cstr('General.Terminal'), 0.0_c_double, ierr)
+      if (ierr == 0) call gmshOptionSetNumber(cstr('General.Verbosity'), 1.0_c_double, ierr)
+      if (ierr == 0) call gmshOpen(cstr(path), ierr)
+      if (ierr /= 0) then
+         errmsg = "mesh:file = '"//path//"': Gmsh cannot read it"//last_error()
+         call gmshFinalize(ierr2)
+         return
+      end if
+      if (ends_with(path, '.geo')) then
+         call gmshModelMeshGenerate(2_c_int, ierr)
+         if (ierr /= 0) then
+            errmsg = "mesh:file = '"//path//"': Gmsh failed to mesh it"//last_error()
+            call gmshFinalize(ierr2)
+            return
+         end if
+      end if
+      do k = 1, level
+         call gmshModelMeshRefine(ierr)
+         if (ierr /= 0) then
+            errmsg = "mesh:file = '"//path//"': Gmsh refinement "//str(k)//' failed'//last_error()
+            call gmshFinalize(ierr2)
+            return
+         end if
+      end do
+      call collect(path, mesh, stat, errmsg)
+      call gmshFinalize(ierr2)
+      if (stat == 0 .and. ierr2 /= 0) then
+         stat = 1
+         errmsg = 'mesh: gmshFinalize failed (ierr = '//str(int(ierr2))//')'
+      end if
+   end subroutine read_untrapped
+
+   !> Load libgmsh and its symbols once (dlopen/dlsym). stat /= 0 with a message if it is missing.
+   subroutine load_gmsh(stat, errmsg)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: k
+      type(c_funptr) :: fun
+      stat = 0
+      errmsg = ''
+      if (c_associated(handle)) return
+      do k = 1, size(library_names)
+         handle = c_dlopen(cstr(trim(library_names(k))), rtld_flags)
+         if (c_associated(handle)) exit
+      end do
+      stat = 1
+      if (.not. c_associated(handle)) then
+         errmsg = "mesh:file needs Gmsh's library, which cannot be loaded ("//c_string(c_dlerror())// &
+                  '); install libgmsh-dev (Debian: apt-get install libgmsh-dev)'
+         return
+      end if
+      call bind_symbol('gmshInitialize')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshInitialize)
+      call bind_symbol('gmshFinalize')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshFinalize)
+      call bind_symbol('gmshOpen')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshOpen)
+      call bind_symbol('gmshOptionSetNumber')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshOptionSetNumber)
+      call bind_symbol('gmshModelMeshGenerate')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshModelMeshGenerate)
+      call bind_symbol('gmshModelMeshRefine')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshModelMeshRefine)
+      call bind_symbol('gmshModelMeshGetNodes')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshModelMeshGetNodes)
+      call bind_symbol('gmshModelMeshGetElementTypes')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshModelMeshGetElementTypes)
+      call bind_symbol('gmshModelMeshGetElementsByType')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshModelMeshGetElementsByType)
+      call bind_symbol('gmshModelMeshGetElementProperties')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshModelMeshGetElementProperties)
+      call bind_symbol('gmshModelGetPhysicalGroups')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshModelGetPhysicalGroups)
+      call bind_symbol('gmshModelGetEntitiesForPhysicalGroup')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshModelGetEntitiesForPhysicalGroup)
+      call bind_symbol('gmshModelGetPhysicalName')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshModelGetPhysicalName)
+      call bind_symbol('gmshLoggerGetLastError')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshLoggerGetLastError)
+      call bind_symbol('gmshFree')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshFree)
+      stat = 0
+   contains
+      subroutine bind_symbol(name)
+         character(len=*), intent(in) :: name
+         fun = c_dlsym(handle, cstr(name))
+         if (.not. c_associated(fun)) then
+            stat = 1
+            errmsg = "Gmsh's library has no symbol "//name//' (an incompatible version?)'
+            handle = c_null_ptr
+         else
+            stat = 0
+         end if
+      end subroutine bind_symbol
+   end subroutine load_gmsh
+
+   !> Nodes, quadrilaterals and physical curves of the current Gmsh model.
+   subroutine collect(path, mesh, stat, errmsg)
+      character(len=*), intent(in) :: path
+      type(mesh_t), intent(inout) :: mesh
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      type(c_ptr) :: p_types, p_tags, p_coord, p_pc, p_etags, p_enodes, p_dimtags, p_ents, p_name
+      integer(c_size_t) :: n_types, n_tags, n_coord, n_pc, n_etags, n_enodes, n_dimtags, n_ents
+      integer(c_int) :: ierr
+      integer(c_int), pointer :: types(:), dimtags(:), ents(:)
+      integer(c_size_t), pointer :: tags(:), etags(:), enodes(:)
+      real(c_double), pointer :: coord(:)
+      integer, allocatable :: local(:), conn(:, :), used(:), seg(:, :), gstart(:), elem_id(:)
+      real(wp), allocatable :: x(:, :)
+      character(len=64), allocatable :: names(:)
+      integer(c_size_t) :: maxtag
+      integer :: i, g, ngroup, nseg, j, nel, nnode
+      character(len=:), allocatable :: name
+
+      stat = 1
+      ! 2D element types: quadrilaterals only
+      call gmshModelMeshGetElementTypes(p_types, n_types, 2_c_int, -1_c_int, ierr)
+      if (ierr /= 0) then
+         errmsg = "mesh:file = '"//path//"': Gmsh cannot list its elements"//last_error()
+         return
+      end if
+      call c_f_pointer(p_types, types, [n_types])
+      do i = 1, int(n_types)
+         if (types(i) /= type_quad4) then
+            errmsg = "mesh:file = '"//path//"' holds "//type_name(types(i))//' elements; contact2d takes '// &
+                     '4-node quadrilaterals only: add Mesh.RecombineAll = 1; Mesh.SubdivisionAlgorithm = 1; '// &
+                     '(with Mesh.Algorithm = 6, not 8) or use transfinite surfaces with Recombine'
+            call gmshFree(p_types)
+            return
+         end if
+      end do
+      call gmshFree(p_types)
+      if (n_types == 0) then
+         errmsg = "mesh:file = '"//path//"' holds no 2D element (is there a Plane Surface, and was it meshed?)"
+         return
+      end if
+
+      ! quadrilaterals
+      call gmshModelMeshGetElementsByType(type_quad4, p_etags, n_etags, p_enodes, n_enodes, -1_c_int, &
+                                          0_c_size_t, 1_c_size_t, ierr)
+      if (ierr /= 0) then
+         errmsg = "mesh:file = '"//path//"': Gmsh cannot give its quadrilaterals"//last_error()
+         return
+      end if
+      call c_f_pointer(p_etags, etags, [n_etags])
+      call c_f_pointer(p_enodes, enodes, [n_enodes])
+      nel = int(n_etags)
+      allocate (conn(4, nel), elem_id(nel))
+      elem_id = int(etags)
+      conn = reshape(int(enodes), [4, nel])
+      call gmshFree(p_etags)
+      call gmshFree(p_enodes)
+
+      ! all nodes; keep those of the quadrilaterals, numbered in increasing tag
+      call gmshModelMeshGetNodes(p_tags, n_tags, p_coord, n_coord, p_pc, n_pc, -1_c_int, -1_c_int, &
+                                 0_c_int, 0_c_int, ierr)
+      if (ierr /= 0) then
+         errmsg = "mesh:file = '"//path//"': Gmsh cannot give its nodes"//last_error()
+         return
+      end if
+      call c_f_pointer(p_tags, tags, [n_tags])
+      call c_f_pointer(p_coord, coord, [n_coord])
+      maxtag = max(maxval(tags), int(maxval(conn), c_size_t))
+      allocate (local(maxtag), used(maxtag))
+      used = 0
+      used(pack(conn, .true.)) = 1
+      local = 0
+      nnode = 0
+      ! increasing tag order
+      do j = 1, int(maxtag)
+         if (used(j) == 1) then
+            nnode = nnode + 1
+            local(j) = nnode
+         end if
+      end do
+      allocate (x(2, nnode))
+      x = 0
+      used = 0
+      do i = 1, int(n_tags)
+         j = int(tags(i))
+         if (local(j) > 0) then
+            x(1, local(j)) = coord(3*i - 2)
+            x(2, local(j)) = coord(3*i - 1)
+            used(j) = 1
+         end if
+      end do
+      call gmshFree(p_tags)
+      call gmshFree(p_coord)
+      if (c_associated(p_pc)) call gmshFree(p_pc)
+      if (any(local > 0 .and. used == 0)) then
+         errmsg = "mesh:file = '"//path//"': an element refers to a node without coordinates"
+         return
+      end if
+      conn = reshape(local(pack(conn, .true.)), [4, nel])
+
+      ! physical curves -> named groups of 2-node edges
+      call gmshModelGetPhysicalGroups(p_dimtags, n_dimtags, 1_c_int, ierr)
+      if (ierr /= 0) then
+         errmsg = "mesh:file = '"//path//"': Gmsh cannot list its physical groups"//last_error()
+         return
+      end if
+      ngroup = int(n_dimtags)/2
+      allocate (names(ngroup), gstart(ngroup + 1), seg(2, 0))
+      if (ngroup > 0) then
+         call c_f_pointer(p_dimtags, dimtags, [n_dimtags])
+      end if
+      nseg = 0
+      do g = 1, ngroup
+         gstart(g) = nseg + 1
+         call gmshModelGetPhysicalName(1_c_int, dimtags(2*g), p_name, ierr)
+         if (ierr /= 0) exit
+         name = c_string(p_name)
+         call gmshFree(p_name)
+         if (len(name) == 0) name = str(int(dimtags(2*g)))   ! unnamed: its tag
+         names(g) = name
+         call gmshModelGetEntitiesForPhysicalGroup(1_c_int, dimtags(2*g), p_ents, n_ents, ierr)
+         if (ierr /= 0) exit
+         call c_f_pointer(p_ents, ents, [n_ents])
+         do i = 1, int(n_ents)
+            call curve_edges(ents(i), seg, nseg, local, stat, errmsg)
+            if (stat /= 0) then
+               errmsg = "mesh:file = '"//path//"': physical curve '"//trim(names(g))//"' "//errmsg
+               call gmshFree(p_ents)
+               call gmshFree(p_dimtags)
+               return
+            end if
+            stat = 1
+         end do
+         call gmshFree(p_ents)
+      end do
+      if (c_associated(p_dimtags)) call gmshFree(p_dimtags)
+      if (ierr /= 0) then
+         errmsg = "mesh:file = '"//path//"': Gmsh cannot read a physical group"//last_error()
+         return
+      end if
+      gstart(ngroup + 1) = nseg + 1
+      call mesh%init_arrays(x, conn)
+      mesh%elem_id = elem_id
+      call mesh%set_groups(names, gstart, seg(:, 1:nseg))
+      stat = 0
+      errmsg = ''
+   end subroutine collect
+
+   !> Append the 2-node line elements of curve `tag` to seg.
+   subroutine curve_edges(tag, seg, nseg, local, stat, errmsg)
+      integer(c_int), intent(in) :: tag
+      integer, allocatable, intent(inout) :: seg(:, :)
+      integer, intent(inout) :: nseg
+      integer, intent(in) :: local(:)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      type(c_ptr) :: p_types, p_etags, p_enodes
+      integer(c_size_t) :: n_types, n_etags, n_enodes
+      integer(c_int), pointer :: types(:)
+      integer(c_size_t), pointer :: enodes(:)
+      integer(c_int) :: ierr
+      integer, allocatable :: tmp(:, :)
+      integer :: i, n, a, b
+
+      stat = 1
+      call gmshModelMeshGetElementTypes(p_types, n_types, 1_c_int, tag, ierr)
+      if (ierr /= 0) then
+         errmsg = 'cannot be read'//last_error()
+         return
+      end if
+      call c_f_pointer(p_types, types, [n_types])
+      do i = 1, int(n_types)
+         if (types(i) /= type_line2) then
+            errmsg = 'holds '//type_name(types(i))//' elements; only 2-node lines (first-order meshes) are taken'
+            call gmshFree(p_types)
+            return
+         end if
+      end do
+      call gmshFree(p_types)
+      if (n_types == 0) then
+         stat = 0
+         return
+      end if
+      call gmshModelMeshGetElementsByType(type_line2, p_etags, n_etags, p_enodes, n_enodes, tag, &
+                                          0_c_size_t, 1_c_size_t, ierr)
+      if (ierr /= 0) then
+         errmsg = 'cannot be read'//last_error()
+         return
+      end if
+      call c_f_pointer(p_enodes, enodes, [n_enodes])
+      n = int(n_etags)
+      if (nseg + n > size(seg, 2)) then
+         allocate (tmp(2, max(2*size(seg, 2), nseg + n)))
+         tmp(:, 1:nseg) = seg(:, 1:nseg)
+         call move_alloc(tmp, seg)
+      end if
+      do i = 1, n
+         a = int(enodes(2*i - 1))
+         b = int(enodes(2*i))
+         if (a > size(local) .or. b > size(local)) then
+            errmsg = 'has an edge whose nodes belong to no quadrilateral'
+            call gmshFree(p_etags)
+            call gmshFree(p_enodes)
+            return
+         end if
+         if (local(a) == 0 .or. local(b) == 0) then
+            errmsg = 'has an edge whose nodes belong to no quadrilateral'
+            call gmshFree(p_etags)
+            call gmshFree(p_enodes)
+            return
+         end if
+         nseg = nseg + 1
+         seg(:, nseg) = [local(a), local(b)]
+      end do
+      call gmshFree(p_etags)
+      call gmshFree(p_enodes)
+      stat = 0
+      errmsg = ''
+   end subroutine curve_edges
+
+   !> Gmsh's name of an element type, e.g. 'Triangle 3' (the type number if Gmsh does not say).
+   function type_name(etype) result(name)
+      integer(c_int), intent(in) :: etype
+      character(len=:), allocatable :: name
+      type(c_ptr) :: p_name, p_local
+      integer(c_int) :: dim, order, nn, npn, ierr
+      integer(c_size_t) :: n_local
+      call gmshModelMeshGetElementProperties(etype, p_name, dim, order, nn, p_local, n_local, npn, ierr)
+      if (ierr /= 0) then
+         name = 'type-'//str(int(etype))
+         return
+      end if
+      name = "'"//c_string(p_name)//"' (Gmsh type "//str(int(etype))//')'
+      call gmshFree(p_name)
+      if (c_associated(p_local)) call gmshFree(p_local)
+   end function type_name
+
+   !> ': <Gmsh's last error>' or ''.
+   function last_error() result(s)
+      character(len=:), allocatable :: s
+      type(c_ptr) :: p
+      integer(c_int) :: ierr
+      s = ''
+      call gmshLoggerGetLastError(p, ierr)
+      if (ierr /= 0) return
+      if (.not. c_associated(p)) return
+      s = c_string(p)
+      call gmshFree(p)
+      if (len(s) > 0) s = ' ('//s//')'
+   end function last_error
+
+   !> A copy of a NUL-terminated C string.
+   function c_string(p) result(s)
+      type(c_ptr), intent(in) :: p
+      character(len=:), allocatable :: s
+      character(kind=c_char), pointer :: chars(:)
+      integer :: i, n
+      if (.not. c_associated(p)) then
+         s = ''
+         return
+      end if
+      n = int(c_strlen(p))
+      call c_f_pointer(p, chars, [n])
+      allocate (character(len=n) :: s)
+      do i = 1, n
+         s(i:i) = chars(i)
+      end do
+   end function c_string
+
+   !> A Fortran string as a NUL-terminated C string.
+   pure function cstr(s) result(c)
+      character(len=*), intent(in) :: s
+      character(kind=c_char, len=1) :: c(len_trim(s) + 1)
+      integer :: i
+      do i = 1, len_trim(s)
+         c(i) = s(i:i)
+      end do
+      c(len_trim(s) + 1) = c_null_char
+   end function cstr
+
+   pure logical function ends_with(s, tail)
+      character(len=*), intent(in) :: s, tail
+      integer :: n
+      n = len_trim(s)
+      ends_with = .false.
+      if (n >= len(tail)) ends_with = s(n - len(tail) + 1:n) == tail
+   end function ends_with
+end module contact2d_gmsh

@@ -1,0 +1,52 @@
+"""Regression: refused geometry input (issue 10) gives one line, exit 1, nothing written.
+
+Cases on the small deck tests/regression/geometry/base.nml (a 3 x 3 quad square from Gmsh):
+triangles (a .geo without recombination), a boundary name the mesh lacks (the message lists the
+names it has), a Gamma_c group that is not one chain (bottom and top), an inverted (self-
+intersecting) element in a .msh file (element 12 of geometry/inverted.msh, named by that id, not its index 2), a circle obstacle without its
+centre, a mesh file that does not exist. Each runs in an empty directory with -o out.h5: exit 1,
+exactly one stderr line 'contact2d: error: ...' matching the case's pattern, no out.h5, no out.xmf.
+"""
+import os
+import re
+
+import c2dtest
+
+CASES = [
+    ("triangles", ["--set", "mesh:file='triangles.geo'"],
+     r"'Triangle 3'.*4-node quadrilaterals only.*Mesh\.RecombineAll = 1"),
+    ("missing_name_contact", ["--set", "contact:boundary='bottm'"],
+     r"contact:boundary = 'bottm' is not a physical curve.*'bottom', 'top', 'two_pieces'"),
+    ("missing_name_dirichlet", ["--set", "dirichlet#1:boundary='nope'"],
+     r"&dirichlet \(#1\).*boundary = 'nope' is not a physical curve.*'bottom'"),
+    ("not_one_chain", ["--set", "contact:boundary='two_pieces'"],
+     r"contact:boundary = 'two_pieces' is not one connected chain"),
+    ("inverted_element", ["--set", "mesh:file='inverted.msh'", "--set", "dirichlet#1:boundary='bottom'",
+                          "--set", "dirichlet#2:boundary='bottom'"],
+     r"element 12 has a non-positive Jacobian"),
+    ("circle_without_centre", ["--set", "contact:obstacle='circle'"],
+     r"obstacle = 'circle' needs obstacle_center"),
+    ("missing_mesh_file", ["--set", "mesh:file='no_such_mesh.msh'"],
+     r"no_such_mesh\.msh': no such file"),
+    ("edge_with_gmsh_mesh", ["--set", "contact:boundary=''", "--set", "contact:edge='bottom'"],
+     r"contact:edge = 'bottom' needs the built-in rectangle.*boundary ="),
+]
+
+
+def body(t):
+    deck = os.path.join(t.here, "geometry", "base.nml")
+    ok = t.run(deck, name="valid")
+    t.expect_exit(ok, 0)
+    for name, args, pattern in CASES:
+        run = t.run(deck, *args, name=name)
+        t.expect_exit(run, 1, stop=False)
+        lines = run.stderr_lines()
+        t.check_equal(run, "one line on stderr", 1, len(lines))
+        line = lines[0] if lines else ""
+        t.check(run, "message", line.startswith("contact2d: error: ") and re.search(pattern, line) is not None,
+                pattern, line)
+        t.check_equal(run, "nothing written", [], sorted(os.listdir(run.cwd)))
+
+
+if __name__ == "__main__":
+    c2dtest.Test(__doc__.splitlines()[0]).main(body)

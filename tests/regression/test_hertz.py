@@ -1,0 +1,73 @@
+"""Regression: Hertz contact of a cylinder (issue 10), P1 or P0, at the shipped level (0).
+
+--scene indenter: inputs/hertz_indenter_<m>.nml, a rigid cylinder (obstacle = 'circle') on an
+elastic block; --scene cylinder: inputs/hertz_cylinder_<m>.nml, an elastic half-disk on a rigid
+plane (a curved Gamma_c). Both are half models on Gmsh meshes graded towards the contact.
+With the run's own total normal force P (2 x the half model's sum), 2D Hertz gives
+    a = sqrt(4 P R / (pi E*)), p0 = 2 P / (pi a), E* = E / (1 - nu^2)
+(postproc/hertz.py). Checked: convergence, a/R <= 0.1, the run's contact half-width (farthest node
+in contact) within one boundary element of a, the pressure at the centre within 2 % of p0, no
+penetration; for the circle, /contact/gap and /contact/normal against |x - C| - R and
+-(x - C)/|x - C| computed here. The L2 error decreasing with level is the study's
+(postproc/hertz_study.py, docs/geometry.md), too slow for the suite.
+"""
+import os
+import sys
+
+import numpy as np
+
+import c2dtest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postproc"))
+import hertz  # noqa: E402
+
+
+def body(t):
+    scene, mult = t.args.scene, t.args.multiplier.lower()
+    deck = t.deck("hertz_%s_%s.nml" % (scene, mult))
+    run = t.run(deck, name=scene)
+    t.expect_exit(run, 0)
+    t.expect_output(run)
+    m = hertz.measure(run.h5)
+    t.check_equal(run, "converged", 1, m["converged"])
+    t.info(run, "P (N/mm), a (mm), p0 (MPa)", "%.6g %.6g %.6g" % (m["P"], m["a"], m["p0"]))
+    t.check_le(run, "a / R", m["a"] / m["R"], 0.1)
+    t.check_le(run, "|a_run - a| / (boundary element at a_run)", abs(m["a_fe"] - m["a"]) / m["h_edge"], 1.0)
+    t.check_close(run, "pressure at the centre vs p0", m["p0"], m["p0_fe"], rtol=0.02,
+                  reason="the issue's acceptance: 2 % (holds at the shipped level 0)")
+    t.info(run, "L2 error of p on Gamma_c / L2 norm of p", "%.4g" % m["l2_rel"])
+    with run.open() as f:
+        x = f["mesh/coordinates"][()]
+        u = f["final/displacement"][()]
+        nodes = f["contact/nodes"][()] - 1
+        gap = f["contact/gap"][()]
+        normal = f["contact/normal"][()]
+    if scene == "indenter":
+        c = np.array([0.0, 10.0])
+        r = np.linalg.norm(x[nodes] - c, axis=1)
+        t.check_close(run, "/contact/gap = |x - C| - R", r - 10.0, gap, atol=1e-12,
+                      reason="round-off of a norm of 10 mm")
+        t.check_close(run, "/contact/normal = -(x - C)/|x - C|", -(x[nodes] - c) / r[:, None], normal,
+                      atol=1e-14, reason="round-off")
+    else:
+        t.check_close(run, "/contact/gap = y", x[nodes, 1], gap, atol=1e-14, reason="round-off")
+        t.check_close(run, "/contact/normal = (0, -1)", np.tile([0.0, -1.0], (len(nodes), 1)), normal, atol=0.0)
+    d = np.sum(u[nodes] * normal, axis=1) - gap
+    if mult == "p1":
+        t.check_le(run, "penetration max d_i / (contact half-width)", float(np.max(d)) / m["a"], 1e-12)
+    else:
+        s = f_abscissa(run)
+        dd = c2dtest.dual_coupling(s) @ d
+        t.check_le(run, "P0 penetration max (D d)_i / w_i / a", float(np.max(dd / c2dtest.nodal_weights(s))) / m["a"],
+                   1e-12)
+
+
+def f_abscissa(run):
+    with run.open() as f:
+        return f["contact/abscissa"][()]
+
+
+if __name__ == "__main__":
+    c2dtest.Test(__doc__.splitlines()[0],
+                 [(("--scene",), dict(required=True, choices=["indenter", "cylinder"])),
+                  (("--multiplier",), dict(required=True, choices=["P1", "P0"]))]).main(body)
