@@ -376,6 +376,9 @@ contains
       real(wp) :: nel, nnode, bytes
       real(wp), allocatable :: probe(:)
       integer :: ios
+      stat = 0
+      ! a Gmsh mesh (mesh:file) has no nx, ny: its size is known only once it is read
+      if (len_trim(deck%mesh%file) > 0) return
       nel = real(deck%mesh%nx, wp)*real(deck%mesh%ny, wp)*4.0_wp**deck%mesh%level
       nnode = (real(deck%mesh%nx, wp)*2.0_wp**deck%mesh%level + 1)*(real(deck%mesh%ny, wp)*2.0_wp**deck%mesh%level + 1)
       ! nodal arrays of the model, the integrator and the output (about 40 reals per node),
