@@ -4,7 +4,7 @@ module contact2d_driver
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
    use contact2d_kinds, only: wp, i8
    use contact2d_version, only: program_name, program_version
-   use contact2d_strings, only: str
+   use contact2d_strings, only: str, fixed, sci
    use contact2d_cli, only: cli_t, cli_parse, usage
    use contact2d_deck, only: deck_t, deck_read
    use contact2d_model, only: model_t, model_build
@@ -16,7 +16,7 @@ module contact2d_driver
    use contact2d_threads, only: thread_tuner_t
    use contact2d_omp_env, only: omp_env_passive
    use contact2d_stiffness, only: omp_min_nodes
-   use contact2d_static_run, only: static_run, static_distance
+   use contact2d_static_run, only: static_run, static_distance, summary_contact_status
    use contact2d_initial, only: initial_velocity_apply, initial_velocity_warning
    implicit none
    private
@@ -396,33 +396,7 @@ contains
       errmsg = ''
    end subroutine memory_check
 
-   !> A real with a fixed number of decimals.
-   function fixed(x, decimals) result(s)
-      real(wp), intent(in) :: x
-      integer, intent(in) :: decimals
-      character(len=:), allocatable :: s
-      character(len=32) :: buf, fmt
-      if (.not. ieee_is_finite(x)) then
-         s = sci(x)
-         return
-      else if (abs(x) >= 1.0e15_wp) then
-         s = sci(x)    ! f0.d would not fit the buffer
-         return
-      end if
-      write (fmt, '(a,i0,a)') '(f0.', decimals, ')'
-      write (buf, fmt) x
-      s = trim(buf)
-      if (s(1:1) == '.') s = '0'//s
-   end function fixed
 
-   !> A real in short scientific notation.
-   function sci(x) result(s)
-      real(wp), intent(in) :: x
-      character(len=:), allocatable :: s
-      character(len=32) :: buf
-      write (buf, '(es10.3)') x
-      s = trim(adjustl(buf))
-   end function sci
 
    subroutine print_time_step(model, omega2_power, iterations)
       type(model_t), intent(in) :: model
@@ -460,14 +434,7 @@ contains
       associate (c => model%contact)
          call c%status(status)
          call c%fields(pressure, shear, info)
-         write (output_unit, '(a)') ' contact             '//c%multiplier_name()//', '//str(c%nc)//' nodes: '// &
-            str(count(status == 1))//' stick, '//str(count(status == 2))//' slip, '// &
-            str(count(status == 0))//' separated; total F_n = '//sci(c%normal_total)//' N, F_t = '// &
-            sci(c%tangential_total)//' N'
-         if (any(status > 0)) then
-            write (output_unit, '(a)') '                     in contact from abscissa '// &
-               sci(minval(c%abscissa, mask=status > 0))//' to '//sci(maxval(c%abscissa, mask=status > 0))//' mm'
-         end if
+         call summary_contact_status(c, status)
          nneg = count(pressure < 0)
          write (output_unit, '(a)', advance='no') ' contact pressure    max '//sci(maxval(pressure))//' MPa'
          if (nneg > 0) then

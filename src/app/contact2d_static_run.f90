@@ -6,7 +6,8 @@
 module contact2d_static_run
    use, intrinsic :: iso_fortran_env, only: output_unit
    use contact2d_kinds, only: wp, i8
-   use contact2d_strings, only: str
+   use contact2d_strings, only: str, fixed, sci
+   use contact2d_contact, only: contact_t
    use contact2d_deck, only: deck_t
    use contact2d_model, only: model_t
    use contact2d_explicit, only: explicit_t, damping_none
@@ -14,7 +15,7 @@ module contact2d_static_run
    use contact2d_static, only: static_t, kkt_names
    implicit none
    private
-   public :: static_run, static_distance
+   public :: static_run, static_distance, summary_contact_status
 
 contains
 
@@ -198,14 +199,7 @@ contains
          if (model%contact%active) then
             associate (c => model%contact)
                call c%status(status_c)
-               write (output_unit, '(a)') ' contact             '//c%multiplier_name()//', '//str(c%nc)//' nodes: '// &
-                  str(count(status_c == 1))//' stick, '//str(count(status_c == 2))//' slip, '// &
-                  str(count(status_c == 0))//' separated; total F_n = '//sci(c%normal_total)//' N, F_t = '// &
-                  sci(c%tangential_total)//' N'
-               if (any(status_c > 0)) then
-                  write (output_unit, '(a)') '                     in contact from abscissa '// &
-                     sci(minval(c%abscissa, mask=status_c > 0))//' to '//sci(maxval(c%abscissa, mask=status_c > 0))//' mm'
-               end if
+               call summary_contact_status(c, status_c)
             end associate
          end if
          write (output_unit, '(a)') ' static solve        '//fixed(st%time_factor + st%time_condense + st%time_pdas, 3)// &
@@ -277,22 +271,19 @@ contains
       end if
    end subroutine supported
 
-   function fixed(x, decimals) result(s)
-      real(wp), intent(in) :: x
-      integer, intent(in) :: decimals
-      character(len=:), allocatable :: s
-      character(len=32) :: buf, fmt
-      write (fmt, '(a,i0,a)') '(f0.', decimals, ')'
-      write (buf, fmt) x
-      s = trim(buf)
-      if (s(1:1) == '.') s = '0'//s
-   end function fixed
 
-   function sci(x) result(s)
-      real(wp), intent(in) :: x
-      character(len=:), allocatable :: s
-      character(len=32) :: buf
-      write (buf, '(es10.3)') x
-      s = trim(adjustl(buf))
-   end function sci
+   !> The summary's contact lines shared by explicit and static runs: status counts, totals and
+   !> the extent of the contact zone (README "What a run prints").
+   subroutine summary_contact_status(c, status)
+      type(contact_t), intent(in) :: c
+      integer, intent(in) :: status(:)
+      write (output_unit, '(a)') ' contact             '//c%multiplier_name()//', '//str(c%nc)//' nodes: '// &
+         str(count(status == 1))//' stick, '//str(count(status == 2))//' slip, '// &
+         str(count(status == 0))//' separated; total F_n = '//sci(c%normal_total)//' N, F_t = '// &
+         sci(c%tangential_total)//' N'
+      if (any(status > 0)) then
+         write (output_unit, '(a)') '                     in contact from abscissa '// &
+            sci(minval(c%abscissa, mask=status > 0))//' to '//sci(maxval(c%abscissa, mask=status > 0))//' mm'
+      end if
+   end subroutine summary_contact_status
 end module contact2d_static_run

@@ -1,9 +1,10 @@
 !> Small string helpers for messages and echoes.
 module contact2d_strings
    use contact2d_kinds, only: wp, i8
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    implicit none
    private
-   public :: str, lower, join
+   public :: str, lower, join, fixed, sci
 
    !> Shortest text that reads back to the same value (reals), or the plain integer.
    interface str
@@ -119,4 +120,32 @@ contains
          s = s//"'"//trim(words(i))//"'"
       end do
    end function join
+   !> A real with a fixed number of decimals.
+   function fixed(x, decimals) result(s)
+      real(wp), intent(in) :: x
+      integer, intent(in) :: decimals
+      character(len=:), allocatable :: s
+      character(len=32) :: buf, fmt
+      if (.not. ieee_is_finite(x)) then
+         s = sci(x)
+         return
+      else if (abs(x) >= 1.0e15_wp) then
+         s = sci(x)    ! f0.d would not fit the buffer
+         return
+      end if
+      write (fmt, '(a,i0,a)') '(f0.', decimals, ')'
+      write (buf, fmt) x
+      s = trim(buf)
+      if (s(1:1) == '.') s = '0'//s
+   end function fixed
+
+   !> A real in short scientific notation.
+   function sci(x) result(s)
+      real(wp), intent(in) :: x
+      character(len=:), allocatable :: s
+      character(len=32) :: buf
+      write (buf, '(es10.3)') x
+      s = trim(adjustl(buf))
+   end function sci
+
 end module contact2d_strings
