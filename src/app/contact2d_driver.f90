@@ -377,7 +377,8 @@ contains
       real(wp), allocatable :: probe(:)
       integer :: ios
       stat = 0
-      ! a Gmsh mesh (mesh:file) has no nx, ny: its size is known only once it is read
+      errmsg = ''
+      ! a Gmsh mesh's size is known only once Gmsh has read it (nx, ny are unset): no probe
       if (len_trim(deck%mesh%file) > 0) return
       nel = real(deck%mesh%nx, wp)*real(deck%mesh%ny, wp)*4.0_wp**deck%mesh%level
       nnode = (real(deck%mesh%nx, wp)*2.0_wp**deck%mesh%level + 1)*(real(deck%mesh%ny, wp)*2.0_wp**deck%mesh%level + 1)
@@ -392,8 +393,6 @@ contains
          return
       end if
       deallocate (probe)
-      stat = 0
-      errmsg = ''
    end subroutine memory_check
 
 
