@@ -3,7 +3,7 @@
 !> critical time step (SPEC sections 2 and 4).
 module contact2d_stiffness
    use contact2d_kinds, only: wp
-   use contact2d_mesh, only: mesh_t
+   use contact2d_mesh, only: mesh_t, node_elements
    use contact2d_material, only: material_t
    use contact2d_q1, only: q1_stiffness, q1_lumped_mass, q1_max_frequency_squared
    implicit none
@@ -134,32 +134,15 @@ contains
    subroutine build_rows(this, rows)
       type(stiffness_t), intent(inout) :: this
       integer, intent(in) :: rows(:)
-      integer, allocatable :: adj_start(:), adj_elem(:), fill(:), cols(:)
+      integer, allocatable :: adj_start(:), adj_elem(:), cols(:)
       real(wp), allocatable :: blocks(:, :, :)
       integer :: e, a, b, n, m, r, k, nel, ncol, pos, nb
       logical, allocatable :: is_row(:)
 
       nel = size(this%conn, 2)
       ! node -> elements
-      allocate (adj_start(this%nnode + 1), adj_elem(4*nel), fill(this%nnode), is_row(this%nnode))
-      adj_start = 0
-      do e = 1, nel
-         do a = 1, 4
-            adj_start(this%conn(a, e) + 1) = adj_start(this%conn(a, e) + 1) + 1
-         end do
-      end do
-      adj_start(1) = 1
-      do n = 1, this%nnode
-         adj_start(n + 1) = adj_start(n + 1) + adj_start(n)
-      end do
-      fill = adj_start(1:this%nnode)
-      do e = 1, nel
-         do a = 1, 4
-            n = this%conn(a, e)
-            adj_elem(fill(n)) = e
-            fill(n) = fill(n) + 1
-         end do
-      end do
+      call node_elements(this%conn, this%nnode, adj_start, adj_elem)
+      allocate (is_row(this%nnode))
       is_row = .false.
       is_row(rows) = .true.
       ! at most 16 blocks per row (four elements of four nodes) before merging duplicates

@@ -8,7 +8,7 @@ module contact2d_mesh
    use contact2d_strings, only: str
    implicit none
    private
-   public :: mesh_t, side_names
+   public :: mesh_t, side_names, node_elements
 
    !> Names of the four sides of the bounding box, in the order used by side ids 1..4.
    character(len=6), parameter :: side_names(4) = [character(len=6) :: 'bottom', 'right', 'top', 'left']
@@ -353,7 +353,7 @@ contains
       real(wp), parameter :: gp = 1/sqrt(3.0_wp)
       real(wp), parameter :: xi(4) = [-1, 1, 1, -1], eta(4) = [-1, -1, 1, 1]
       real(wp) :: xe(2, 4), jac(2, 2), area
-      integer, allocatable :: adj_start(:), adj_elem(:), fill(:)
+      integer, allocatable :: adj_start(:), adj_elem(:)
       integer :: e, q, a, b, k, s, n, hold
       logical :: forward
 
@@ -387,24 +387,7 @@ contains
          return
       end if
       ! node -> elements, to find the element of each group edge
-      allocate (adj_start(this%nnode + 1), adj_elem(4*this%nel), fill(this%nnode))
-      adj_start = 0
-      do e = 1, this%nel
-         do a = 1, 4
-            adj_start(this%conn(a, e) + 1) = adj_start(this%conn(a, e) + 1) + 1
-         end do
-      end do
-      adj_start(1) = 1
-      do n = 1, this%nnode
-         adj_start(n + 1) = adj_start(n + 1) + adj_start(n)
-      end do
-      fill = adj_start(1:this%nnode)
-      do e = 1, this%nel
-         do a = 1, 4
-            adj_elem(fill(this%conn(a, e))) = e
-            fill(this%conn(a, e)) = fill(this%conn(a, e)) + 1
-         end do
-      end do
+      call node_elements(this%conn, this%nnode, adj_start, adj_elem)
       allocate (this%gboundary(size(this%gseg, 2)))
       do s = 1, size(this%gseg, 2)
          n = this%gseg(1, s)
@@ -436,4 +419,31 @@ contains
       stat = 0
       errmsg = ''
    end subroutine mesh_orient
+   !> Node -> element adjacency in compressed form: the elements holding node n are
+   !> adj_elem(adj_start(n) : adj_start(n+1) - 1), in increasing element order.
+   pure subroutine node_elements(conn, nnode, adj_start, adj_elem)
+      integer, intent(in) :: conn(:, :)   !< (4, nel) element nodes
+      integer, intent(in) :: nnode
+      integer, allocatable, intent(out) :: adj_start(:), adj_elem(:)
+      integer, allocatable :: fill(:)
+      integer :: e, a, n
+      allocate (adj_start(nnode + 1), adj_elem(size(conn)), fill(nnode))
+      adj_start = 0
+      do e = 1, size(conn, 2)
+         do a = 1, size(conn, 1)
+            adj_start(conn(a, e) + 1) = adj_start(conn(a, e) + 1) + 1
+         end do
+      end do
+      adj_start(1) = 1
+      do n = 1, nnode
+         adj_start(n + 1) = adj_start(n + 1) + adj_start(n)
+      end do
+      fill = adj_start(1:nnode)
+      do e = 1, size(conn, 2)
+         do a = 1, size(conn, 1)
+            adj_elem(fill(conn(a, e))) = e
+            fill(conn(a, e)) = fill(conn(a, e)) + 1
+         end do
+      end do
+   end subroutine node_elements
 end module contact2d_mesh
