@@ -26,6 +26,10 @@ Issue 13 figures (each section can be chosen with --sections):
            two actively waiting threads (OMP_WAIT_POLICY=active, libgomp's default), interleaved, then stops the load and runs one and default
            again: the ratios default / one thread (target <= 1.3 under load) and one / default
            idle (target >= 1.9 at k = 5-6);
+  mass     mass scaling on the graded Hertz meshes (inputs/hertz_cylinder_p1.nml, hertz_indenter_p1.nml,
+           --mass-levels): steps and wall to the end state without and with solver:mass_scaling =
+           F x dt_critical (--mass-factors), frictionless (end state must not move) and Tresca
+           (--tresca-threshold; the path effect is reported), added mass, end-state difference;
   static   the built-in static engine (`contact2d DECK --static`) beside the explicit end state
            when the binary has it, else n/a;
   general  (issue 10) the price of the general (Gmsh) path: ns per element-step on the Hertz Gmsh
@@ -231,6 +235,60 @@ def section_steps(exe, out, levels, repeats, threads):
                   f"wall {statistics.median(walls):8.3f} s, max|du|/max|u| {du:.1e}{extra}", flush=True)
 
 
+HERTZ_DECKS = ("hertz_cylinder_p1.nml", "hertz_indenter_p1.nml")
+
+
+def section_mass(exe, out, levels, factors, threads, tresca_threshold):
+    """Mass scaling on the graded Hertz meshes (issue 13): steps and wall to the end state without
+    and with solver:mass_scaling = F x dt_critical (the unscaled element bound), frictionless
+    (the end state is the unique static solution: it must not move beyond the tolerance) and a
+    Tresca variant (contact:threshold; the path enters through the slip: the difference is
+    reported, not judged). Prints max |u - u_0| / max |u_0| and the relative change of the total
+    normal force against the unscaled run, and the added mass as a fraction of the body mass."""
+    print("\n== mass scaling on the graded Hertz meshes: steps to the end state without and with "
+          "solver:mass_scaling = F x dt_critical", flush=True)
+    res = []
+    for deck_name in HERTZ_DECKS:
+        deck = ROOT / "inputs" / deck_name
+        for friction in ("frictionless", "tresca"):
+            fsets = {} if friction == "frictionless" else {"contact:friction": "tresca",
+                                                           "contact:threshold": tresca_threshold}
+            for k in levels:
+                def one(extra, name):
+                    h5 = out / f"mass_{name}.h5"
+                    r = run(exe, deck, h5, {"mesh:level": k, "output:xdmf": False, **fsets, **extra},
+                            threads=threads)
+                    if r.returncode != 0:
+                        sys.exit(f"mass-scaling run failed ({deck_name}, k={k}, {extra}): {r.stderr}")
+                    with Run(h5) as f:
+                        a = dict(f.attrs)
+                        u = np.array(f.file["final/displacement"][()])
+                        fn = float(np.sum(f.file["final/contact/normal_force"][()]))
+                    h5.unlink()
+                    if int(a["converged"]) != 1:
+                        sys.exit(f"mass-scaling run did not converge ({deck_name}, k={k}, {extra})")
+                    return a, u, fn
+                a0, u0, fn0 = one({}, "ref")
+                dtc = float(a0["dt_critical"])
+                s0 = int(a0["steps"])
+                print(f"  {deck_name} k={k} {friction} ({int(a0['element_count'])} elements): unscaled "
+                      f"{s0} steps, {float(a0['wall_seconds']):.2f} s", flush=True)
+                for fac in factors:
+                    a, u, fn = one({"solver:mass_scaling": fac * dtc}, "scaled")
+                    du = np.abs(u - u0).max() / np.abs(u0).max()
+                    dfn = abs(fn - fn0) / abs(fn0)
+                    ratio = s0 / int(a["steps"])
+                    added = float(a["added_mass"]) / float(a["body_mass"])
+                    print(f"     F={fac:<4g} {int(a['steps']):7d} steps ({ratio:.2f}x fewer"
+                          f"{'' if friction != 'frictionless' else (', PASS' if ratio >= 3 else ', MISS')} >= 3x), "
+                          f"{float(a['wall_seconds']):.2f} s, added mass {added:.3f} x body, "
+                          f"max|du|/max|u| {du:.1e}, |dF_n|/F_n {dfn:.1e}", flush=True)
+                    res.append({"deck": deck_name, "friction": friction, "level": k, "factor": fac,
+                                "steps_ref": s0, "steps": int(a["steps"]), "ratio": ratio, "added": added,
+                                "du": du, "dfn": dfn})
+    return res
+
+
 def section_threads(exe, out, levels, repeats):
     """The thread-robustness benchmark: a CPU-bound load on one core, started and stopped here."""
     print("\n== threads under load: a CPU-bound process occupies one core (started by this script)", flush=True)
@@ -290,8 +348,8 @@ def section_static(exe, out, levels, threads):
         else:
             line += ", static n/a (this binary has no --static)"
         print(line, flush=True)
-    print("  graded Hertz mesh (issue 10): ns per element-step on the general path in the 'general' section; "
-          "steps with/without mass scaling on it are not measured here yet", flush=True)
+    print("  graded Hertz mesh (issue 10): ns per element-step on the general path in the 'general' section, "
+          "steps with/without mass scaling on it in the 'mass' section", flush=True)
 
 
 def main():
@@ -301,10 +359,15 @@ def main():
     ap.add_argument("--repeats", type=int, default=7, help="runs per timing (median; default 7)")
     ap.add_argument("--out", default="study/bench", help="work directory")
     ap.add_argument("--no-getfem", action="store_true", help="skip the GetFEM reference")
-    ap.add_argument("--sections", default="issue5,base,steps,threads,static,general",
-                    help="comma list of issue5, base, steps, threads, static, general (default all)")
+    ap.add_argument("--sections", default="issue5,base,steps,mass,threads,static,general",
+                    help="comma list of issue5, base, steps, mass, threads, static, general (default all)")
     ap.add_argument("--base-exe", help="the previous commit's contact2d, for the base section")
     ap.add_argument("--thread-levels", default="5", help="levels of the threads section (default 5)")
+    ap.add_argument("--mass-levels", default="0-2", help="Hertz mesh levels of the mass section (default 0-2)")
+    ap.add_argument("--mass-factors", default="4",
+                    help="comma list of mass-scaling targets in units of dt_critical (default 4)")
+    ap.add_argument("--tresca-threshold", type=float, default=200.0,
+                    help="Tresca threshold [MPa] of the mass section's friction variant (default 200)")
     args = ap.parse_args()
     exe = find_exe(args.exe)
     out = Path(args.out)
@@ -315,6 +378,9 @@ def main():
         section_base(exe, args.base_exe, out, levels, args.repeats)
     if "steps" in sections:
         section_steps(exe, out, levels, max(1, args.repeats // 3), "1")
+    if "mass" in sections:
+        section_mass(exe, out, parse_levels(args.mass_levels), [float(x) for x in args.mass_factors.split(",")],
+                     "1", args.tresca_threshold)
     if "threads" in sections:
         section_threads(exe, out, parse_levels(args.thread_levels), args.repeats)
     if "static" in sections:
