@@ -12,7 +12,7 @@
 !> Rows are stored with a fixed width of ell_width = 9 blocks (a node of a regular quad mesh has
 !> 9 neighbours, itself included; 94 % of the rows of the refined Hertz meshes): a shorter row is
 !> padded with zero blocks on its own node, the blocks of a longer row beyond the ninth go to a
-!> small CSR remainder. So the product of a row is straight-line code with no loop and no
+!> small CSR remainder, added after the chunk's fixed-width pass. So the product of a row is straight-line code with no loop and no
 !> data-dependent branch: three accumulators of three blocks each (short dependency chains),
 !> each block B (four consecutive values, column-major) times u(col) as two 2-wide FMAs on
 !> (b11, b21) ux and (b12, b22) uy. The order of every sum is fixed by the layout, and chunks are
@@ -38,6 +38,7 @@ module contact2d_rows
       real(wp), allocatable :: blk(:, :, :)     !< (b11, b21, b12, b22) of each block (4, ell_width, nnode) [N/mm]
       integer, allocatable :: xstart(:)         !< remainder: first extra block of each row (nnode + 1)
       integer(i8), allocatable :: xcol(:)       !< remainder: flat column offsets
+      integer, allocatable :: xrow(:)           !< remainder: row of each extra block
       real(wp), allocatable :: xblk(:, :)       !< remainder: blocks (4, nextra) [N/mm]
    contains
       procedure :: init => rows_init
@@ -59,7 +60,7 @@ contains
       do r = 1, this%nnode
          nx = nx + max(0, stiff%row_start(r + 1) - stiff%row_start(r) - ell_width)
       end do
-      allocate (this%xcol(nx), this%xblk(4, nx))
+      allocate (this%xcol(nx), this%xrow(nx), this%xblk(4, nx))
       nx = 0
       do r = 1, this%nnode
          this%xstart(r) = nx + 1
@@ -74,6 +75,7 @@ contains
             else
                nx = nx + 1
                this%xcol(nx) = 2*(int(stiff%blk_col(k), i8) - 1)
+               this%xrow(nx) = r
                this%xblk(:, nx) = reshape(stiff%blk(:, :, k), [4])
             end if
          end do
@@ -103,18 +105,18 @@ contains
       logical, intent(in) :: pending
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       real(wp), intent(inout) :: partial(:, :)   !< (4, rows_parts)
-      call sweep_chunks(this%nnode, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, this%xblk, &
+      call sweep_chunks(this%nnode, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, this%xrow, this%xblk, &
                         u, uold, v, f, mdof, minvdof, c1, c2, rdt, pending, w, partial, &
                         this%nnode >= omp_min_nodes)
    end subroutine rows_sweep
 
    !> The chunks, shared among threads (explicit-shape arrays: unit strides known to the compiler).
-   subroutine sweep_chunks(nnode, nx, col, blk, xstart, xcol, xblk, u, uold, v, f, mdof, minvdof, c1, c2, rdt, &
+   subroutine sweep_chunks(nnode, nx, col, blk, xstart, xcol, xrow, xblk, u, uold, v, f, mdof, minvdof, c1, c2, rdt, &
                            pending, w, partial, par)
       integer, intent(in) :: nnode, nx
       integer(i8), intent(in) :: col(ell_width, nnode), xcol(nx)
       real(wp), intent(in) :: blk(4, ell_width, nnode), xblk(4, nx)
-      integer, intent(in) :: xstart(nnode + 1)
+      integer, intent(in) :: xstart(nnode + 1), xrow(nx)
       real(wp), intent(in) :: u(2*nnode), uold(2*nnode), mdof(2*nnode), minvdof(2*nnode), c1, c2, rdt
       real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode)
       logical, intent(in) :: pending, par
@@ -124,19 +126,19 @@ contains
       do c = 1, (nnode + chunk_rows - 1)/chunk_rows
          r0 = (c - 1)*chunk_rows + 1
          r1 = min(c*chunk_rows, nnode)
-         call chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xblk, u, uold, v, f, mdof, minvdof, c1, c2, rdt, &
+         call chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, u, uold, v, f, mdof, minvdof, c1, c2, rdt, &
                     pending, w, partial(:, c))
       end do
       !$omp end parallel do
    end subroutine sweep_chunks
 
    !> Rows r0 .. r1: corrector (flat dofs 2 r0 - 1 .. 2 r1), products, predictor.
-   subroutine chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xblk, u, uold, v, f, mdof, minvdof, c1, c2, rdt, &
+   subroutine chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, u, uold, v, f, mdof, minvdof, c1, c2, rdt, &
                     pending, w, part)
       integer, intent(in) :: nnode, nx, r0, r1
       integer(i8), intent(in) :: col(ell_width, nnode), xcol(nx)
       real(wp), intent(in) :: blk(4, ell_width, nnode), xblk(4, nx)
-      integer, intent(in) :: xstart(nnode + 1)
+      integer, intent(in) :: xstart(nnode + 1), xrow(nx)
       real(wp), intent(in) :: u(2*nnode), uold(2*nnode), mdof(2*nnode), minvdof(2*nnode), c1, c2, rdt
       real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode)
       logical, intent(in) :: pending
@@ -184,16 +186,15 @@ contains
             s3 = s3 + blk(3, i + 2, r)*u(j + 2)
             s4 = s4 + blk(4, i + 2, r)*u(j + 2)
          end do
-         ! the remainder of a row longer than ell_width (rare)
-         do k = xstart(r), xstart(r + 1) - 1
-            j = xcol(k)
-            p1 = p1 + xblk(1, k)*u(j + 1)
-            p2 = p2 + xblk(2, k)*u(j + 1)
-            p3 = p3 + xblk(3, k)*u(j + 2)
-            p4 = p4 + xblk(4, k)*u(j + 2)
-         end do
          f(2*r - 1) = ((p1 + q1) + s1) + ((p3 + q3) + s3)
          f(2*r) = ((p2 + q2) + s2) + ((p4 + q4) + s4)
+      end do
+      ! the blocks of rows longer than ell_width beyond the ninth (rare), added in order
+      do k = xstart(r0), xstart(r1 + 1) - 1
+         r = xrow(k)
+         j = xcol(k)
+         f(2*r - 1) = f(2*r - 1) + (xblk(1, k)*u(j + 1) + xblk(3, k)*u(j + 2))
+         f(2*r) = f(2*r) + (xblk(2, k)*u(j + 1) + xblk(4, k)*u(j + 2))
       end do
       !$omp simd
       do d = 2*r0 - 1, 2*r1
