@@ -17,8 +17,8 @@ Measured:
     p(x_i) and q(x_i): largest and root-mean-square differences over the nodes with |x| < a,
     relative to mu p0 (shear) and p0 (pressure).
 The formulas neglect the normal-tangential coupling (Dundurs beta = 0.29 here, not 0), which
-also puts a shear on the contact during the pressing stage (its /fields snapshot at the end of
-stage 1 is measured the same way): they are compared with, not asserted (docs/friction.md 9).
+also puts a shear on the contact during the pressing stage (the run's last /fields snapshot, the
+pressed state before shearing, is measured the same way): they are compared with, not asserted (docs/friction.md 9).
 Only numpy, h5py (and matplotlib for --figure).
 """
 import argparse
@@ -71,7 +71,8 @@ def _state(xc, w, fn, ft, status, mu, P, Q, R, E, nu):
 
 
 def measure(path):
-    """Final state (and the end-of-stage-1 snapshot, key 'stage1', when the run has one)."""
+    """Final state, and the pressed state (key 'stage1': the run's last /fields snapshot, at the
+    start of the shearing stage in the shipped decks) when the run has one."""
     with h5py.File(path, "r") as f:
         deck = parse_effective_deck(_attr(f.attrs["effective_deck"]))
         x = f["mesh/coordinates"][()]
@@ -86,7 +87,7 @@ def measure(path):
         snaps = sorted(f["fields"].values(), key=lambda g: float(g.attrs["time"])) if "fields" in f else []
         snap = None
         if snaps:
-            g = snaps[0]
+            g = snaps[-1]                                # the last: the pressed state before shearing
             snap = (float(g.attrs["time"]), g["contact_normal_force"][()], g["contact_tangential_force"][()])
         hist = {k: f["history/" + k][()] for k in ("time", "status_changes")}
     E, nu = float(deck["material"]["young"]), float(deck["material"]["poisson"])
@@ -121,7 +122,7 @@ def report(m):
              "  status changes in the run: %d" % m["status_changes"]]
     if "stage1" in m:
         s = m["stage1"]
-        lines.append("  end of stage 1 (t = %.4g s, no tangential load): P = %.6g, Q = %.4g N/mm; inner zone below "
+        lines.append("  pressed state (t = %.4g s, no tangential load): P = %.6g, Q = %.4g N/mm; inner zone below "
                      "the limit: c_fe/a = %.3f, centre %+.3f; shear max %.3f, rms %.3f (of mu p0) against q = 0"
                      % (s["time"], s["P"], s["Q"], s["c_fe_over_a"], s["e_fe_over_a"], s["shear_max"],
                         s["shear_rms"]))
@@ -148,7 +149,7 @@ def figure(ms, path):
     if "stage1" in m0:
         s = m0["stage1"]
         ax.plot(s["x"] / a, s["q_fe"] / (mu * p0), "x--", ms=4, lw=0.6, color="0.5",
-                label="%s at the end of pressing (Q = 0)" % m0["multiplier"])
+                label="%s pressed, before shearing (Q = 0)" % m0["multiplier"])
     ax.axhline(0, color="0.8", lw=0.5)
     ax.set_xlim(-1.15, 1.15)
     ax.set_xlabel("x / a")
