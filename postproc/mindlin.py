@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Cattaneo-Mindlin measures of a contact2d run of inputs/mindlin_cylinder_*.nml (issue 11).
 
-    postproc/mindlin.py RUN.h5 [RUN2.h5 ...] [--figure docs/figures/mindlin_shear.png]
+    postproc/mindlin.py RUN.h5 [RUN2.h5 ...] [--figure docs/figures/mindlin_shear.png [--pressed PRESSED.h5]]
     from mindlin import measure;  m = measure("mindlin_cylinder_p1.h5")
 
 The whole half-disk (no symmetry plane), pressed by P, then its flat side moved along x.
@@ -129,7 +129,7 @@ def report(m):
     return "\n".join(lines)
 
 
-def figure(ms, path):
+def figure(ms, path, pressed=None):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -146,10 +146,10 @@ def figure(ms, path):
         ax.plot(m["x"] / a, m["q_fe"] / (mu * p0), mk + "-", ms=4, lw=0.8, mfc="none",
                 label=r"%s: $F_{t,i}/w_i$, stick zone $c/a$ = %.2f, centre %+.2f"
                 % (m["multiplier"], m["c_fe_over_a"], m["e_fe_over_a"]))
-    if "stage1" in m0:
-        s = m0["stage1"]
-        ax.plot(s["x"] / a, s["q_fe"] / (mu * p0), "x--", ms=4, lw=0.6, color="0.5",
-                label="%s pressed, before shearing (Q = 0)" % m0["multiplier"])
+    if pressed is not None:
+        ax.plot(pressed["x"] / a, pressed["q_fe"] / (mu * p0), "x--", ms=4, lw=0.6, color="0.5",
+                label="%s pressed only (no shear stroke), converged: Q = %.2g N/mm"
+                % (pressed["multiplier"], pressed["Q"]))
     ax.axhline(0, color="0.8", lw=0.5)
     ax.set_xlim(-1.15, 1.15)
     ax.set_xlabel("x / a")
@@ -165,12 +165,16 @@ def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("runs", nargs="+")
     p.add_argument("--figure")
+    p.add_argument("--pressed", help="a run of the same deck without the shear stroke (its final state is drawn)")
     args = p.parse_args(argv)
     ms = [measure(r) for r in args.runs]
     for m in ms:
         print(report(m))
     if args.figure:
-        figure(ms, args.figure)
+        pressed = measure(args.pressed) if args.pressed else None
+        if pressed is not None:
+            print(report(pressed))
+        figure(ms, args.figure, pressed)
     return 0
 
 
