@@ -1,25 +1,99 @@
 !> One sweep over memory per explicit step (issue 13, docs/performance.md): row by row, the
-!> corrector of the previous step (velocities and the kinetic, damping and strain energies), the
-!> internal force K u^n and the predictor of this step, so that every node is loaded once.
+!> internal force K u^n, the predictor of this step in velocity form and the energy sums of the
+!> predicted velocity, so that every node is loaded once and u^(n-1) is not kept at all.
+!>
+!>    v* = ca v^(n-1/2) - cb M^-1 K u^n,   u~ = u^n + dt v*   (v overwritten by v*),
+!>    partial = (sum m v*^2, sum m ((v* + v^(n-1/2))/2)^2, sum u~ . K u^n, sum m (v* - v^(n-1/2))^2).
+!>
+!> v* is v^(n+1/2) wherever nothing changes u~ after the sweep; the caller corrects the velocity
+!> and these sums at the loaded, prescribed and contact dofs (contact2d_explicit).
 !>
 !> Structured meshes of equal elements use nine stencils of 2 x 2 blocks (interior, four edges,
-!> four corners): every grid row is one vectorised loop, its two end nodes are done apart. Other
-!> meshes use the block-CSR rows of contact2d_stiffness. Sums are per grid row (or per fixed
-!> chunk of block rows) and added in order by the caller, so the bits do not depend on the
-!> number of threads or on how rows are shared among them.
+!> four corners): every grid row is one vectorised loop, its two end nodes are done apart. The
+!> nodal masses of such a mesh are the same along a grid row but for its end nodes (interior,
+!> edge and corner masses; mass scaling keeps that, every interior node of a row having the same
+!> row of K), so they are kept per class of row (bottom, inside, top): three short arrays that
+!> stay in cache instead of two per-dof arrays streamed from memory; a mesh whose masses do not
+!> follow the pattern keeps one class per row. Other meshes use the block-CSR rows of
+!> contact2d_stiffness. Sums are per grid row (or per fixed chunk of block rows) and added in
+!> order by the caller, so the bits do not depend on the number of threads or on how rows are
+!> shared among them.
 module contact2d_sweep
    use contact2d_kinds, only: wp
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    implicit none
    private
-   public :: sweep_stencils, sweep_parts, sweep_step
+   public :: sweep_t, sweep_stencils
 
    !> Block rows per partial sum on general meshes.
    integer, parameter :: chunk_rows = 256
    !> Offsets (i, j) of the four local nodes of a structured element from its bottom-left node.
    integer, parameter :: off(2, 4) = reshape([0, 0, 1, 0, 1, 1, 0, 1], [2, 4])
 
+   !> Operator data and masses of the sweep, formed once from the stiffness.
+   type :: sweep_t
+      logical :: structured = .false.
+      integer :: nx = 0, ny = 0
+      real(wp) :: s(2, 2, -1:1, -1:1, 3, 3) = 0   !< the nine stencils (structured)
+      real(wp) :: cv(0:7, -3:3, 3, 3) = 0         !< flat interior coefficients (structured)
+      !> per-dof masses and inverses of each class of grid row, (2 (nx + 1), nclass) [t], [1/t]
+      real(wp), allocatable :: rmass(:, :), rminv(:, :)
+      integer, allocatable :: rclass(:)           !< class of each grid row (0:ny)
+      real(wp), allocatable :: mass(:), minv(:)   !< per node (general meshes) [t], [1/t]
+      real(wp), allocatable :: partial(:, :)      !< sums of the last sweep (4, parts)
+   contains
+      procedure :: init => sweep_init
+      procedure :: step => sweep_step
+   end type sweep_t
+
 contains
+
+   !> Stencils, masses and partial sums for this stiffness (after any mass scaling).
+   subroutine sweep_init(this, stiff)
+      class(sweep_t), intent(out) :: this
+      type(stiffness_t), intent(in) :: stiff
+      real(wp), allocatable :: mrow(:, :)
+      integer :: j, n, nx, ny, rep(3)
+      logical :: uniform
+      this%structured = stiff%structured
+      if (.not. stiff%structured) then
+         this%mass = stiff%mass
+         this%minv = 1/stiff%mass
+         allocate (this%partial(4, (size(stiff%row_node) + chunk_rows - 1)/chunk_rows))
+         return
+      end if
+      nx = stiff%nx
+      ny = stiff%ny
+      this%nx = nx
+      this%ny = ny
+      n = 2*(nx + 1)
+      call sweep_stencils(stiff%ke(:, :, 1), this%s)
+      call flat_coefficients(this%s, this%cv)
+      ! per-dof masses of every row; the class of row j is its row type (1 bottom, 2 inside, 3 top)
+      mrow = reshape(spread(stiff%mass, 1, 2), [n, ny + 1])
+      allocate (this%rclass(0:ny))
+      do j = 0, ny
+         this%rclass(j) = row_type(j, ny)
+      end do
+      rep = [0, min(1, ny), ny]   ! a row of each type (ny = 1: no inside row, never used)
+      uniform = .true.
+      do j = 0, ny
+         uniform = uniform .and. all(mrow(:, j + 1) == mrow(:, rep(this%rclass(j)) + 1))
+      end do
+      if (uniform) then
+         this%rmass = mrow(:, rep + 1)
+      else
+         this%rmass = mrow
+         this%rclass = [(j + 1, j=0, ny)]
+      end if
+      this%rminv = 1/this%rmass
+      allocate (this%partial(4, ny + 1))
+   end subroutine sweep_init
+
+   pure integer function row_type(j, ny)
+      integer, intent(in) :: j, ny
+      row_type = merge(1, merge(3, 2, j == ny), j == 0)
+   end function row_type
 
    !> The nine stencils s(:, :, di, dj, ct, rt) of a structured mesh: column type ct and row type
    !> rt are 1 on the low boundary (i = 0 or j = 0), 2 inside, 3 on the high boundary; blocks of
@@ -47,92 +121,85 @@ contains
       end do
    end subroutine sweep_stencils
 
-   !> Number of partial sums (grid rows or chunks of block rows) of sweep_step.
-   pure integer function sweep_parts(stiff) result(n)
+   !> One sweep: f = K u, v = v* = ca v - cb M^-1 f, w = u + dt v*, and the partial sums of
+   !> this%partial (see the module header).
+   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w)
+      class(sweep_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
-      if (stiff%structured) then
-         n = stiff%ny + 1
-      else
-         n = (size(stiff%row_node) + chunk_rows - 1)/chunk_rows
-      end if
-   end function sweep_parts
-
-   !> One sweep: if pending, first the corrector of the previous step at each node,
-   !>    v = (u - uold)/dt,  partial = (sum m v^2, sum m ((v + v_old)/2)^2, sum u . f_old,
-   !>    sum m (v - v_old)^2);
-   !> then f = K u and w = u + c1 v - c2 M^-1 f.
-   subroutine sweep_step(stiff, s, u, uold, v, f, minv, mass, mdof, minvdof, c1, c2, rdt, pending, w, partial)
-      type(stiffness_t), intent(in) :: stiff
-      real(wp), intent(in) :: s(2, 2, -1:1, -1:1, 3, 3)   !< stencils (structured meshes)
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
-      real(wp), intent(in) :: uold(:, :)    !< u^(n-1) (used if pending) [mm]
-      real(wp), intent(inout) :: v(:, :)    !< v^(n-3/2) in, v^(n-1/2) out if pending [mm/s]
-      real(wp), intent(inout) :: f(:, :)    !< K u^(n-1) in, K u^n out [N]
-      real(wp), intent(in) :: minv(:), mass(:)         !< per node
-      real(wp), intent(in) :: mdof(:), minvdof(:)      !< per dof (2 nnode)
-      real(wp), intent(in) :: c1, c2, rdt
-      logical, intent(in) :: pending
+      real(wp), intent(inout) :: v(:, :)    !< v^(n-1/2) in, v* out [mm/s]
+      real(wp), intent(inout) :: f(:, :)    !< K u^n out [N]
+      real(wp), intent(in) :: ca, cb, dt    !< (1 - a dt/2)/(1 + a dt/2), dt/(1 + a dt/2) [s], dt [s]
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
-      real(wp), intent(inout) :: partial(:, :)   !< (4, sweep_parts)
-      if (stiff%structured) then
-         call sweep_grid(stiff%nx, stiff%ny, s, u, uold, v, f, mdof, minvdof, c1, c2, rdt, pending, w, partial, &
-                         stiff%nnode >= omp_min_nodes)
+      if (this%structured) then
+         call sweep_grid(this%nx, this%ny, this%s, this%cv, this%rmass, this%rminv, this%rclass, u, v, f, &
+                         ca, cb, dt, w, this%partial, stiff%nnode >= omp_min_nodes)
       else
-         call sweep_rows(stiff, u, uold, v, f, minv, mass, c1, c2, rdt, pending, w, partial)
+         call sweep_rows(stiff, this%mass, this%minv, u, v, f, ca, cb, dt, w, this%partial)
       end if
    end subroutine sweep_step
 
-   subroutine sweep_grid(nx, ny, s, u, uold, v, f, mdof, minvdof, c1, c2, rdt, pending, w, partial, par)
+   subroutine sweep_grid(nx, ny, s, cv, rmass, rminv, rclass, u, v, f, ca, cb, dt, w, partial, par)
       integer, intent(in) :: nx, ny
-      real(wp), intent(in) :: s(2, 2, -1:1, -1:1, 3, 3)
-      real(wp), intent(in) :: u(2, 0:nx, 0:ny), uold(2, 0:nx, 0:ny), mdof(2, 0:nx, 0:ny), minvdof(2, 0:nx, 0:ny)
+      real(wp), intent(in) :: s(2, 2, -1:1, -1:1, 3, 3), cv(0:7, -3:3, 3, 3)
+      real(wp), intent(in) :: rmass(:, :), rminv(:, :)
+      integer, intent(in) :: rclass(0:ny)
+      real(wp), intent(in) :: u(2, 0:nx, 0:ny)
       real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
-      real(wp), intent(in) :: c1, c2, rdt
-      logical, intent(in) :: pending, par
+      real(wp), intent(in) :: ca, cb, dt
+      logical, intent(in) :: par
       real(wp), intent(inout) :: partial(4, 0:ny)
       integer :: j, rt
-      real(wp) :: cv(0:7, -3:3, 3, 3)
-      call flat_coefficients(s, cv)
       !$omp parallel do schedule(dynamic) if(par) private(rt)
       do j = 0, ny
-         rt = merge(1, merge(3, 2, j == ny), j == 0)
-         call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), uold(1, 0, j), &
-                       v(1, 0, j), f(1, 0, j), mdof(1, 0, j), minvdof(1, 0, j), cv(:, :, :, rt), c1, c2, rdt, &
-                       pending, w(1, 0, j), partial(:, j))
-         call end_node(nx, ny, s, 0, j, 1, rt, u, v, f, minvdof, c1, c2, w)
-         call end_node(nx, ny, s, nx, j, 3, rt, u, v, f, minvdof, c1, c2, w)
+         rt = row_type(j, ny)
+         call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
+                       cv(:, :, :, rt))
+         call end_node(nx, ny, s, 0, j, 1, rt, u, f)
+         call end_node(nx, ny, s, nx, j, 3, rt, u, f)
+         call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rminv(:, rclass(j)), &
+                         ca, cb, dt, w(1, 0, j), partial(:, j))
       end do
       !$omp end parallel do
    end subroutine sweep_grid
 
-   !> One grid row as flat arrays of interleaved (x, y) values (n = 2 (nx + 1)): the corrector
-   !> of the last step on the whole row (if pending; it reads f before it is overwritten), then
-   !> K u and the predictor on the interior nodes while the row is in cache.
-   subroutine grid_row(n, um, u0, up, uo, v, f, m, minv, cv, c1, c2, rdt, pending, w, part)
+   !> The predictor and the energy sums on one grid row as flat arrays of interleaved (x, y)
+   !> values, right after its K u (the row is in cache).
+   subroutine row_update(n, u0, v, f, m, minv, ca, cb, dt, w, part)
       integer, intent(in) :: n
-      real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), uo(0:n - 1), m(0:n - 1), minv(0:n - 1)
-      real(wp), intent(in) :: cv(0:7, -3:3, 3), c1, c2, rdt
-      real(wp), intent(inout) :: v(0:n - 1), f(0:n - 1), w(0:n - 1)
-      logical, intent(in) :: pending
+      real(wp), intent(in) :: u0(0:n - 1), f(0:n - 1), m(0:n - 1), minv(0:n - 1), ca, cb, dt
+      real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
-      integer :: b, l, p, nb
-      real(wp) :: c(0:7, -3:3, 3), sm, s0, sp, vn, ek, ed, es, ea
+      integer :: p
+      real(wp) :: vo, vs, wn, ek, ed, es, ea
       ek = 0
       ed = 0
       es = 0
       ea = 0
-      if (pending) then
-         !$omp simd private(vn) reduction(+:ek, ed, es, ea)
-         do p = 0, n - 1
-            vn = (u0(p) - uo(p))*rdt
-            ek = ek + m(p)*vn*vn
-            ed = ed + m(p)*(0.5_wp*(vn + v(p)))**2
-            es = es + u0(p)*f(p)
-            ea = ea + m(p)*(vn - v(p))**2
-            v(p) = vn
-         end do
-      end if
+      !$omp simd private(vo, vs, wn) reduction(+:ek, ed, es, ea)
+      do p = 0, n - 1
+         vo = v(p)
+         vs = ca*vo - cb*minv(p)*f(p)
+         wn = u0(p) + dt*vs
+         ek = ek + m(p)*vs*vs
+         ed = ed + m(p)*(0.5_wp*(vs + vo))**2
+         es = es + wn*f(p)
+         ea = ea + m(p)*(vs - vo)**2
+         v(p) = vs
+         w(p) = wn
+      end do
       part = [ek, ed, es, ea]
+   end subroutine row_update
+
+   !> K u on the interior nodes of one grid row as flat arrays of interleaved (x, y) values
+   !> (n = 2 (nx + 1)).
+   subroutine grid_row(n, um, u0, up, f, cv)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1)
+      real(wp), intent(in) :: cv(0:7, -3:3, 3)
+      real(wp), intent(inout) :: f(0:n - 1)
+      integer :: b, l, p, nb
+      real(wp) :: c(0:7, -3:3, 3), sm, s0, sp
       if (n < 6) return   ! one column of elements: no interior node (the end nodes follow)
       ! blocks start at odd p (a y output): c(l) holds the coefficients of parity mod(l + 1, 2);
       ! a local copy, so no aliasing and the coefficients stay in registers
@@ -149,7 +216,6 @@ contains
                  + cv(0, 2, 2)*u0(p + 2) + cv(0, 3, 2)*u0(p + 3))) &
              + (cv(0, -2, 3)*up(p - 2) + cv(0, -1, 3)*up(p - 1) + cv(0, 0, 3)*up(p) + cv(0, 1, 3)*up(p + 1) &
                 + cv(0, 2, 3)*up(p + 2) + cv(0, 3, 3)*up(p + 3))
-      w(p) = u0(p) + c1*v(p) - c2*minv(p)*f(p)
       nb = (n - 6)/8
       do b = 0, nb - 1
          !$omp simd private(p, sm, s0, sp)
@@ -162,7 +228,6 @@ contains
             sp = c(l, -3, 3)*up(p - 3) + c(l, -2, 3)*up(p - 2) + c(l, -1, 3)*up(p - 1) + c(l, 0, 3)*up(p) &
                  + c(l, 1, 3)*up(p + 1) + c(l, 2, 3)*up(p + 2) + c(l, 3, 3)*up(p + 3)
             f(p) = (sm + s0) + sp
-            w(p) = u0(p) + c1*v(p) - c2*minv(p)*f(p)
          end do
       end do
       do p = 3 + 8*nb, n - 4
@@ -174,7 +239,6 @@ contains
          sp = cv(l, -3, 3)*up(p - 3) + cv(l, -2, 3)*up(p - 2) + cv(l, -1, 3)*up(p - 1) + cv(l, 0, 3)*up(p) &
               + cv(l, 1, 3)*up(p + 1) + cv(l, 2, 3)*up(p + 2) + cv(l, 3, 3)*up(p + 3)
          f(p) = (sm + s0) + sp
-         w(p) = u0(p) + c1*v(p) - c2*minv(p)*f(p)
       end do
       p = n - 3
       f(p) = ((cv(1, -3, 1)*um(p - 3) + cv(1, -2, 1)*um(p - 2) + cv(1, -1, 1)*um(p - 1) + cv(1, 0, 1)*um(p) &
@@ -183,7 +247,6 @@ contains
                  + cv(1, 1, 2)*u0(p + 1) + cv(1, 2, 2)*u0(p + 2))) &
              + (cv(1, -3, 3)*up(p - 3) + cv(1, -2, 3)*up(p - 2) + cv(1, -1, 3)*up(p - 1) + cv(1, 0, 3)*up(p) &
                 + cv(1, 1, 3)*up(p + 1) + cv(1, 2, 3)*up(p + 2))
-      w(p) = u0(p) + c1*v(p) - c2*minv(p)*f(p)
    end subroutine grid_row
 
    !> The interior stencils of the three row types on a grid row seen as one flat array of
@@ -211,15 +274,12 @@ contains
       end do
    end subroutine flat_coefficients
 
-
-   !> K u and the predictor at the end node (i, j) of a grid row, column type ct and row type
-   !> rt, bounds checked.
-   subroutine end_node(nx, ny, s, i, j, ct, rt, u, v, f, minv, c1, c2, w)
+   !> K u at the end node (i, j) of a grid row, column type ct and row type rt, bounds checked.
+   subroutine end_node(nx, ny, s, i, j, ct, rt, u, f)
       integer, intent(in) :: nx, ny, i, j, ct, rt
       real(wp), intent(in) :: s(2, 2, -1:1, -1:1, 3, 3)
-      real(wp), intent(in) :: u(2, 0:nx, 0:ny), v(2, 0:nx, 0:ny), minv(2, 0:nx, 0:ny)
-      real(wp), intent(inout) :: f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
-      real(wp), intent(in) :: c1, c2
+      real(wp), intent(in) :: u(2, 0:nx, 0:ny)
+      real(wp), intent(inout) :: f(2, 0:nx, 0:ny)
       integer :: di, dj, ii, jj
       real(wp) :: gx, gy
       gx = 0
@@ -236,20 +296,17 @@ contains
       end do
       f(1, i, j) = gx
       f(2, i, j) = gy
-      w(1, i, j) = u(1, i, j) + c1*v(1, i, j) - c2*minv(1, i, j)*gx
-      w(2, i, j) = u(2, i, j) + c1*v(2, i, j) - c2*minv(2, i, j)*gy
    end subroutine end_node
 
    !> General meshes: the block-CSR rows, chunk by chunk.
-   subroutine sweep_rows(stiff, u, uold, v, f, minv, mass, c1, c2, rdt, pending, w, partial)
+   subroutine sweep_rows(stiff, mass, minv, u, v, f, ca, cb, dt, w, partial)
       type(stiffness_t), intent(in) :: stiff
-      real(wp), intent(in) :: u(:, :), uold(:, :), minv(:), mass(:), c1, c2, rdt
+      real(wp), intent(in) :: mass(:), minv(:), u(:, :), ca, cb, dt
       real(wp), intent(inout) :: v(:, :), f(:, :), w(:, :), partial(:, :)
-      logical, intent(in) :: pending
       integer :: c, r, k, m, n
-      real(wp) :: fx, fy, vx, vy, ek, ed, es, ea
+      real(wp) :: fx, fy, vx, vy, ox, oy, ek, ed, es, ea
       !$omp parallel do schedule(dynamic) if(stiff%nnode >= omp_min_nodes) &
-      !$omp private(r, k, m, n, fx, fy, vx, vy, ek, ed, es, ea)
+      !$omp private(r, k, m, n, fx, fy, vx, vy, ox, oy, ek, ed, es, ea)
       do c = 1, size(partial, 2)
          ek = 0
          ed = 0
@@ -257,19 +314,6 @@ contains
          ea = 0
          do r = (c - 1)*chunk_rows + 1, min(c*chunk_rows, size(stiff%row_node))
             n = stiff%row_node(r)
-            if (pending) then
-               vx = (u(1, n) - uold(1, n))*rdt
-               vy = (u(2, n) - uold(2, n))*rdt
-               ek = ek + mass(n)*(vx*vx + vy*vy)
-               ed = ed + mass(n)*((0.5_wp*(vx + v(1, n)))**2 + (0.5_wp*(vy + v(2, n)))**2)
-               es = es + u(1, n)*f(1, n) + u(2, n)*f(2, n)
-               ea = ea + mass(n)*((vx - v(1, n))**2 + (vy - v(2, n))**2)
-               v(1, n) = vx
-               v(2, n) = vy
-            else
-               vx = v(1, n)
-               vy = v(2, n)
-            end if
             fx = 0
             fy = 0
             do k = stiff%row_start(r), stiff%row_start(r + 1) - 1
@@ -279,8 +323,18 @@ contains
             end do
             f(1, n) = fx
             f(2, n) = fy
-            w(1, n) = u(1, n) + c1*vx - c2*minv(n)*fx
-            w(2, n) = u(2, n) + c1*vy - c2*minv(n)*fy
+            ox = v(1, n)
+            oy = v(2, n)
+            vx = ca*ox - cb*minv(n)*fx
+            vy = ca*oy - cb*minv(n)*fy
+            v(1, n) = vx
+            v(2, n) = vy
+            w(1, n) = u(1, n) + dt*vx
+            w(2, n) = u(2, n) + dt*vy
+            ek = ek + mass(n)*(vx*vx + vy*vy)
+            ed = ed + mass(n)*((0.5_wp*(vx + ox))**2 + (0.5_wp*(vy + oy))**2)
+            es = es + w(1, n)*fx + w(2, n)*fy
+            ea = ea + mass(n)*((vx - ox)**2 + (vy - oy)**2)
          end do
          partial(:, c) = [ek, ed, es, ea]
       end do
