@@ -36,6 +36,7 @@ module contact2d_sweep
       integer :: nx = 0, ny = 0
       real(wp) :: s(2, 2, -1:1, -1:1, 3, 3) = 0   !< the nine stencils (structured)
       real(wp) :: cv(0:7, -3:3, 3, 3) = 0         !< flat interior coefficients (structured)
+      real(wp) :: cs(0:7, -3:3, 3, 3) = 0         !< the same for blocks that start at odd p
       !> per-dof masses and inverses of each class of grid row, (2 (nx + 1), nclass) [t], [1/t]
       real(wp), allocatable :: rmass(:, :), rminv(:, :)
       integer, allocatable :: rclass(:)           !< class of each grid row (0:ny)
@@ -69,6 +70,7 @@ contains
       n = 2*(nx + 1)
       call sweep_stencils(stiff%ke(:, :, 1), this%s)
       call flat_coefficients(this%s, this%cv)
+      this%cs = this%cv([1, 0, 3, 2, 5, 4, 7, 6], :, :, :)
       ! per-dof masses of every row; the class of row j is its row type (1 bottom, 2 inside, 3 top)
       mrow = reshape(spread(stiff%mass, 1, 2), [n, ny + 1])
       allocate (this%rclass(0:ny))
@@ -132,16 +134,16 @@ contains
       real(wp), intent(in) :: ca, cb, dt    !< (1 - a dt/2)/(1 + a dt/2), dt/(1 + a dt/2) [s], dt [s]
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       if (this%structured) then
-         call sweep_grid(this%nx, this%ny, this%s, this%cv, this%rmass, this%rminv, this%rclass, u, v, f, &
+         call sweep_grid(this%nx, this%ny, this%s, this%cv, this%cs, this%rmass, this%rminv, this%rclass, u, v, f, &
                          ca, cb, dt, w, this%partial, stiff%nnode >= omp_min_nodes)
       else
          call sweep_rows(stiff, this%mass, this%minv, u, v, f, ca, cb, dt, w, this%partial)
       end if
    end subroutine sweep_step
 
-   subroutine sweep_grid(nx, ny, s, cv, rmass, rminv, rclass, u, v, f, ca, cb, dt, w, partial, par)
+   subroutine sweep_grid(nx, ny, s, cv, cs, rmass, rminv, rclass, u, v, f, ca, cb, dt, w, partial, par)
       integer, intent(in) :: nx, ny
-      real(wp), intent(in) :: s(2, 2, -1:1, -1:1, 3, 3), cv(0:7, -3:3, 3, 3)
+      real(wp), intent(in) :: s(2, 2, -1:1, -1:1, 3, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
       real(wp), intent(in) :: rmass(:, :), rminv(:, :)
       integer, intent(in) :: rclass(0:ny)
       real(wp), intent(in) :: u(2, 0:nx, 0:ny)
@@ -154,7 +156,7 @@ contains
       do j = 0, ny
          rt = row_type(j, ny)
          call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
-                       cv(:, :, :, rt))
+                       cv(:, :, :, rt), cs(:, :, :, rt))
          call end_node(nx, ny, s, 0, j, 1, rt, u, f)
          call end_node(nx, ny, s, nx, j, 3, rt, u, f)
          call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rminv(:, rclass(j)), &
@@ -193,19 +195,15 @@ contains
 
    !> K u on the interior nodes of one grid row as flat arrays of interleaved (x, y) values
    !> (n = 2 (nx + 1)).
-   subroutine grid_row(n, um, u0, up, f, cv)
+   subroutine grid_row(n, um, u0, up, f, cv, c)
       integer, intent(in) :: n
       real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1)
       real(wp), intent(in) :: cv(0:7, -3:3, 3)
+      real(wp), intent(in) :: c(0:7, -3:3, 3)   !< cv for blocks that start at odd p (a y output)
       real(wp), intent(inout) :: f(0:n - 1)
       integer :: b, l, p, nb
-      real(wp) :: c(0:7, -3:3, 3), sm, s0, sp
+      real(wp) :: sm, s0, sp
       if (n < 6) return   ! one column of elements: no interior node (the end nodes follow)
-      ! blocks start at odd p (a y output): c(l) holds the coefficients of parity mod(l + 1, 2);
-      ! a local copy, so no aliasing and the coefficients stay in registers
-      do l = 0, 7
-         c(l, :, :) = cv(mod(l + 1, 2), :, :)
-      end do
       ! outputs p = 2 .. n - 3 (the interior nodes); u_r(p + o) must stay within 0 .. n - 1, so
       ! the first (x, offset -3) and the last (y, offset +3) output leave out the term whose
       ! coefficient is zero; the others go by blocks of eight, then one by one

@@ -50,9 +50,10 @@ module contact2d_explicit
       real(wp), allocatable :: v(:, :)     !< v^(n-1/2) [mm/s]
       real(wp), allocatable :: unew(:, :)  !< u~, then u^(n+1) [mm]
       type(sweep_t) :: sweep               !< K u, predictor and energy sums in one pass
-      !> dofs whose u~ changes after the sweep (loads, prescribed, contact nodes), as (comp, node)
-      !> pairs, and their v^(n-1/2), v* and u~ of the current step; set up by the first advance
-      integer, allocatable :: sdof(:, :)
+      !> dofs whose u~ changes after the sweep (loads, prescribed, contact nodes), as indices of
+      !> the flattened (2 nnode) arrays, their nodes, and their v^(n-1/2), v* and u~ of the
+      !> current step; set up by the first advance
+      integer, allocatable :: sdof(:), snode(:)
       real(wp), allocatable :: s_vold(:), s_vstar(:), s_wstar(:)
       integer :: s_ncontact = -1           !< contact nodes when sdof was built
       real(wp), allocatable :: fint(:, :)  !< K u^n of the last step [N]
@@ -147,8 +148,8 @@ contains
       type(loading_t), intent(in) :: load
       type(contact_t), intent(inout) :: contact
       integer, intent(in) :: nsteps
-      integer :: k, p, q, node, comp
-      real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, acc, f, m, vo, vs, corr(4)
+      integer :: k, p, node, comp
+      real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, acc, f, corr(4)
       real(wp), allocatable :: swap(:, :)
 
       ! set-up, outside the step loop: the dofs that change after the sweep
@@ -162,20 +163,12 @@ contains
          a1 = 1 - 0.5_wp*this%alpha*dt
          a2inv = 1/(1 + 0.5_wp*this%alpha*dt)
          c = dt*dt*a2inv
-         do q = 1, size(this%sdof, 2)
-            this%s_vold(q) = this%v(this%sdof(1, q), this%sdof(2, q))
-         end do
+         call special_gather(size(this%sdof), this%sdof, this%v, this%s_vold)
          ! one sweep: K u^n, v* (into v), u~ and the energy sums of v*
          call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew)
          ! the dofs changed below: keep v* and u~, give back v^(n-1/2) (loads, reactions and
          ! the contact step use it)
-         do q = 1, size(this%sdof, 2)
-            comp = this%sdof(1, q)
-            node = this%sdof(2, q)
-            this%s_vstar(q) = this%v(comp, node)
-            this%s_wstar(q) = this%unew(comp, node)
-            this%v(comp, node) = this%s_vold(q)
-         end do
+         call special_keep(size(this%sdof), this%sdof, this%v, this%unew, this%s_vold, this%s_vstar, this%s_wstar)
          ! automatic damping: a new alpha from (u^n, K u^n), used from the next step on
          if (this%damping == damping_auto) then
             if (mod(this%step, int(this%damping_interval, i8)) == 0) call this%update_damping(stiff, load)
@@ -221,20 +214,8 @@ contains
          this%work_in = this%work_in + abs(work)
          ! 4b. velocities and energies: v^(n+1/2) = v* but at the changed dofs, where it is
          !     (u^(n+1) - u^n)/dt and the sums of the sweep are corrected (in a fixed order)
-         corr = 0
-         do q = 1, size(this%sdof, 2)
-            comp = this%sdof(1, q)
-            node = this%sdof(2, q)
-            m = this%mass(node)
-            vo = this%s_vold(q)
-            vs = this%s_vstar(q)
-            vnew = (this%unew(comp, node) - this%u(comp, node))/dt
-            corr(1) = corr(1) + m*(vnew*vnew - vs*vs)
-            corr(2) = corr(2) + m*((0.5_wp*(vnew + vo))**2 - (0.5_wp*(vs + vo))**2)
-            corr(3) = corr(3) + (this%unew(comp, node) - this%s_wstar(q))*this%fint(comp, node)
-            corr(4) = corr(4) + m*((vnew - vo)**2 - (vs - vo)**2)
-            this%v(comp, node) = vnew
-         end do
+         call special_correct(size(this%sdof), this%sdof, this%snode, this%mass, this%u, this%unew, this%fint, dt, &
+                              this%s_vold, this%s_vstar, this%s_wstar, this%v, corr)
          call add_energies(this, this%sweep%partial, corr, this%alpha, dt)
          ! u^(n+1) becomes u (the arrays are swapped, not copied)
          call move_alloc(this%u, swap)
@@ -280,17 +261,68 @@ contains
          this%s_ncontact = contact%nc
       end if
       n = count(mark)
-      if (allocated(this%sdof)) deallocate (this%sdof, this%s_vold, this%s_vstar, this%s_wstar)
-      allocate (this%sdof(2, n), this%s_vold(n), this%s_vstar(n), this%s_wstar(n))
+      if (allocated(this%sdof)) deallocate (this%sdof, this%snode, this%s_vold, this%s_vstar, this%s_wstar)
+      allocate (this%sdof(n), this%snode(n), this%s_vold(n), this%s_vstar(n), this%s_wstar(n))
       n = 0
       do node = 1, this%nnode
          do comp = 1, 2
             if (.not. mark(comp, node)) cycle
             n = n + 1
-            this%sdof(:, n) = [comp, node]
+            this%sdof(n) = 2*(node - 1) + comp
+            this%snode(n) = node
          end do
       end do
    end subroutine special_dofs
+
+   !> vold = v at the listed dofs (flattened arrays).
+   subroutine special_gather(n, dof, v, vold)
+      integer, intent(in) :: n, dof(n)
+      real(wp), intent(in) :: v(*)
+      real(wp), intent(out) :: vold(n)
+      integer :: q
+      do q = 1, n
+         vold(q) = v(dof(q))
+      end do
+   end subroutine special_gather
+
+   !> At the listed dofs, right after the sweep: keep v* and u~, give v^(n-1/2) back to v.
+   subroutine special_keep(n, dof, v, w, vold, vstar, wstar)
+      integer, intent(in) :: n, dof(n)
+      real(wp), intent(inout) :: v(*)
+      real(wp), intent(in) :: w(*), vold(n)
+      real(wp), intent(out) :: vstar(n), wstar(n)
+      integer :: q
+      do q = 1, n
+         vstar(q) = v(dof(q))
+         wstar(q) = w(dof(q))
+         v(dof(q)) = vold(q)
+      end do
+   end subroutine special_keep
+
+   !> At the listed dofs, after the contact step: v^(n+1/2) = (u^(n+1) - u^n)/dt, and the changes
+   !> of the sweep's sums (m v^2, m vbar^2, u . K u, m dv^2) from v* and u~ to these values, in
+   !> list order.
+   subroutine special_correct(n, dof, node, mass, u, unew, fint, dt, vold, vstar, wstar, v, corr)
+      integer, intent(in) :: n, dof(n), node(n)
+      real(wp), intent(in) :: mass(*), u(*), unew(*), fint(*), dt, vold(n), vstar(n), wstar(n)
+      real(wp), intent(inout) :: v(*)
+      real(wp), intent(out) :: corr(4)
+      integer :: q, d
+      real(wp) :: m, vo, vs, vn
+      corr = 0
+      do q = 1, n
+         d = dof(q)
+         m = mass(node(q))
+         vo = vold(q)
+         vs = vstar(q)
+         vn = (unew(d) - u(d))/dt
+         corr(1) = corr(1) + m*(vn*vn - vs*vs)
+         corr(2) = corr(2) + m*((0.5_wp*(vn + vo))**2 - (0.5_wp*(vs + vo))**2)
+         corr(3) = corr(3) + (unew(d) - wstar(q))*fint(d)
+         corr(4) = corr(4) + m*((vn - vo)**2 - (vs - vo)**2)
+         v(d) = vn
+      end do
+   end subroutine special_correct
 
 
    !> Growing-mode guard, every step: a mode above the stability limit changes sign every step
