@@ -21,6 +21,7 @@
 module contact2d_sweep
    use contact2d_kinds, only: wp
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
+   use omp_lib, only: omp_get_max_threads, omp_get_num_procs, omp_get_thread_num
    implicit none
    private
    public :: sweep_t, sweep_stencils
@@ -37,6 +38,13 @@ module contact2d_sweep
       real(wp) :: s(2, 2, -1:1, -1:1, 3, 3) = 0   !< the nine stencils (structured)
       real(wp) :: cv(0:7, -3:3, 3, 3) = 0         !< flat interior coefficients (structured)
       real(wp) :: cs(0:7, -3:3, 3, 3) = 0         !< the same for blocks that start at odd p
+      !> the interior stencil has the symmetries of a rectangle (symmetric_coefficients): inside
+      !> rows then use its nine distinct values, qs, on sums and differences of rows
+      logical :: sym = .false.
+      real(wp) :: qs(0:7, 6) = 0
+      !> per thread, the sum and difference rows of grid_row_sym, (0:2 (nx + 1) - 1, 2, 0:nscr - 1)
+      real(wp), allocatable :: scr(:, :, :)
+      integer :: nscr = 0
       !> per-dof masses and inverses of each class of grid row, (2 (nx + 1), nclass) [t], [1/t]
       real(wp), allocatable :: rmass(:, :), rminv(:, :)
       integer, allocatable :: rclass(:)           !< class of each grid row (0:ny)
@@ -71,6 +79,12 @@ contains
       call sweep_stencils(stiff%ke(:, :, 1), this%s)
       call flat_coefficients(this%s, this%cv)
       this%cs = this%cv([1, 0, 3, 2, 5, 4, 7, 6], :, :, :)
+      call symmetric_coefficients(this%s(:, :, :, :, 2, 2), this%sym, this%qs)
+      if (this%sym) then
+         this%nscr = max(omp_get_max_threads(), omp_get_num_procs())
+         allocate (this%scr(0:n - 1, 2, 0:this%nscr - 1))
+         this%scr = 0
+      end if
       ! per-dof masses of every row; the class of row j is its row type (1 bottom, 2 inside, 3 top)
       mrow = reshape(spread(stiff%mass, 1, 2), [n, ny + 1])
       allocate (this%rclass(0:ny))
@@ -135,13 +149,15 @@ contains
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       if (this%structured) then
          call sweep_grid(this%nx, this%ny, this%s, this%cv, this%cs, this%rmass, this%rminv, this%rclass, u, v, f, &
-                         ca, cb, dt, w, this%partial, stiff%nnode >= omp_min_nodes)
+                         ca, cb, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, this%scr, &
+                         this%nscr)
       else
          call sweep_rows(stiff, this%mass, this%minv, u, v, f, ca, cb, dt, w, this%partial)
       end if
    end subroutine sweep_step
 
-   subroutine sweep_grid(nx, ny, s, cv, cs, rmass, rminv, rclass, u, v, f, ca, cb, dt, w, partial, par)
+   subroutine sweep_grid(nx, ny, s, cv, cs, rmass, rminv, rclass, u, v, f, ca, cb, dt, w, partial, par, sym, qs, &
+                         scr, nscr)
       integer, intent(in) :: nx, ny
       real(wp), intent(in) :: s(2, 2, -1:1, -1:1, 3, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
       real(wp), intent(in) :: rmass(:, :), rminv(:, :)
@@ -149,14 +165,24 @@ contains
       real(wp), intent(in) :: u(2, 0:nx, 0:ny)
       real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
       real(wp), intent(in) :: ca, cb, dt
-      logical, intent(in) :: par
+      logical, intent(in) :: par, sym
       real(wp), intent(inout) :: partial(4, 0:ny)
-      integer :: j, rt
-      !$omp parallel do schedule(dynamic) if(par) private(rt)
+      real(wp), intent(in) :: qs(0:7, 6)
+      integer, intent(in) :: nscr
+      real(wp), intent(inout) :: scr(0:, :, 0:)
+      integer :: j, rt, t
+      ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it)
+      !$omp parallel do schedule(dynamic) if(par) private(rt, t) num_threads(max(1, min(omp_get_max_threads(), nscr)))
       do j = 0, ny
          rt = row_type(j, ny)
-         call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
-                       cv(:, :, :, rt), cs(:, :, :, rt))
+         if (sym .and. rt == 2) then
+            t = omp_get_thread_num()
+            call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), f(1, 0, j), qs, &
+                              scr(:, 1, t), scr(:, 2, t))
+         else
+            call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
+                          cv(:, :, :, rt), cs(:, :, :, rt))
+         end if
          call end_node(nx, ny, s, 0, j, 1, rt, u, f)
          call end_node(nx, ny, s, nx, j, 3, rt, u, f)
          call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rminv(:, rclass(j)), &
@@ -246,6 +272,82 @@ contains
              + (cv(1, -3, 3)*up(p - 3) + cv(1, -2, 3)*up(p - 2) + cv(1, -1, 3)*up(p - 1) + cv(1, 0, 3)*up(p) &
                 + cv(1, 1, 3)*up(p + 1) + cv(1, 2, 3)*up(p + 2))
    end subroutine grid_row
+
+   !> K u on the interior nodes of an inside grid row (rows j - 1, j, j + 1: um, u0, up) with a
+   !> stencil of the symmetries of a rectangle (symmetric_coefficients): with the row sum
+   !> S = um + up and E(p) = D(p + 1) - D(p - 3), D = up - um (zero outside the row),
+   !>    f(p) = A0 u0(p) + A2 (u0(p - 2) + u0(p + 2)) + B0 S(p) + B2 (S(p - 2) + S(p + 2))
+   !>           + CX E(p + 2) + CY E(p),
+   !> coefficients by the parity of p (x or y output): 8 multiply-adds per output instead of
+   !> 21, and 8 loads instead of 21.
+   subroutine grid_row_sym(n, um, u0, up, f, q, sb, eb)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 6)
+      real(wp), intent(inout) :: f(0:n - 1), sb(0:n - 1), eb(0:n - 1)
+      integer :: b, l, p, nb
+      if (n < 6) return   ! one column of elements: no interior node
+      !$omp simd
+      do p = 0, n - 1
+         sb(p) = um(p) + up(p)
+      end do
+      ! E(0:2) and E(n - 1) are only ever multiplied by zero coefficients
+      eb(0:2) = 0
+      eb(n - 1) = 0
+      !$omp simd
+      do p = 3, n - 2
+         eb(p) = (up(p + 1) - um(p + 1)) - (up(p - 3) - um(p - 3))
+      end do
+      ! outputs p = 2 .. n - 3 by blocks of eight (lane l has the parity of l), then one by one
+      nb = (n - 4)/8
+      do b = 0, nb - 1
+         !$omp simd private(p)
+         do l = 0, 7
+            p = 2 + 8*b + l
+            f(p) = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
+                   + (q(l, 5)*eb(p + 2) + q(l, 6)*eb(p))
+         end do
+      end do
+      do p = 2 + 8*nb, n - 3
+         l = mod(p, 2)
+         f(p) = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
+                + (q(l, 5)*eb(p + 2) + q(l, 6)*eb(p))
+      end do
+   end subroutine grid_row_sym
+
+   !> The interior stencil s2 = s(:, :, :, :, 2, 2) of a mesh of equal rectangles aligned with
+   !> the axes is even in both directions in its xx and yy blocks and odd in both in its xy and
+   !> yx blocks, which are equal: nine values (a00, a10, a01, a11 of xx, the same of yy, c).
+   !> ok if s2 has these symmetries to 1e-12 of its largest entry; q then holds, per lane of
+   !> eight flat outputs (even lanes x, odd lanes y), A0, A2, B0, B2, CX, CY of grid_row_sym,
+   !> each the mean of the entries it stands for.
+   pure subroutine symmetric_coefficients(s2, ok, q)
+      real(wp), intent(in) :: s2(2, 2, -1:1, -1:1)
+      logical, intent(out) :: ok
+      real(wp), intent(out) :: q(0:7, 6)
+      real(wp) :: r(2, 2, -1:1, -1:1), a(0:1, 0:1, 2), c
+      integer :: k, di, dj
+      do k = 1, 2
+         a(0, 0, k) = s2(k, k, 0, 0)
+         a(1, 0, k) = 0.5_wp*(s2(k, k, -1, 0) + s2(k, k, 1, 0))
+         a(0, 1, k) = 0.5_wp*(s2(k, k, 0, -1) + s2(k, k, 0, 1))
+         a(1, 1, k) = 0.25_wp*((s2(k, k, -1, -1) + s2(k, k, 1, 1)) + (s2(k, k, 1, -1) + s2(k, k, -1, 1)))
+      end do
+      c = 0.125_wp*(((s2(1, 2, 1, 1) + s2(1, 2, -1, -1)) - (s2(1, 2, 1, -1) + s2(1, 2, -1, 1))) &
+                    + ((s2(2, 1, 1, 1) + s2(2, 1, -1, -1)) - (s2(2, 1, 1, -1) + s2(2, 1, -1, 1))))
+      do dj = -1, 1
+         do di = -1, 1
+            r(1, 1, di, dj) = a(abs(di), abs(dj), 1)
+            r(2, 2, di, dj) = a(abs(di), abs(dj), 2)
+            r(1, 2, di, dj) = c*di*dj
+            r(2, 1, di, dj) = c*di*dj
+         end do
+      end do
+      ok = maxval(abs(r - s2)) <= 1.0e-12_wp*maxval(abs(s2))
+      do k = 0, 7, 2
+         q(k, :) = [a(0, 0, 1), a(1, 0, 1), a(0, 1, 1), a(1, 1, 1), c, 0.0_wp]
+         q(k + 1, :) = [a(0, 0, 2), a(1, 0, 2), a(0, 1, 2), a(1, 1, 2), 0.0_wp, c]
+      end do
+   end subroutine symmetric_coefficients
 
    !> The interior stencils of the three row types on a grid row seen as one flat array of
    !> interleaved (x, y) values: output p takes sum over rows r and offsets o = -3..3 of
