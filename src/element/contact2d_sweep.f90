@@ -210,13 +210,13 @@ contains
          vs = ca*vo - cb*minv(p)*f(p)
          wn = u0(p) + dt*vs
          ek = ek + m(p)*vs*vs
-         ed = ed + m(p)*(0.5_wp*(vs + vo))**2
+         ed = ed + m(p)*(vs + vo)**2
          es = es + wn*f(p)
          ea = ea + m(p)*(vs - vo)**2
          v(p) = vs
          w(p) = wn
       end do
-      part = [ek, ed, es, ea]
+      part = [ek, 0.25_wp*ed, es, ea]
    end subroutine row_update
 
    !> K u on the interior nodes of one grid row as flat arrays of interleaved (x, y) values
@@ -286,15 +286,14 @@ contains
       real(wp), intent(inout) :: f(0:n - 1), sb(0:n - 1), eb(0:n - 1)
       integer :: b, l, p, nb
       if (n < 6) return   ! one column of elements: no interior node
-      !$omp simd
-      do p = 0, n - 1
-         sb(p) = um(p) + up(p)
-      end do
       ! E(0:2) and E(n - 1) are only ever multiplied by zero coefficients
+      sb(0:2) = um(0:2) + up(0:2)
+      sb(n - 1) = um(n - 1) + up(n - 1)
       eb(0:2) = 0
       eb(n - 1) = 0
       !$omp simd
       do p = 3, n - 2
+         sb(p) = um(p) + up(p)
          eb(p) = (up(p + 1) - um(p + 1)) - (up(p - 3) - um(p - 3))
       end do
       ! outputs p = 2 .. n - 3 by blocks of eight (lane l has the parity of l), then one by one
