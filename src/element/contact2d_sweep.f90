@@ -42,7 +42,7 @@ module contact2d_sweep
       !> rows then use its nine distinct values, qs, on sums and differences of rows
       logical :: sym = .false.
       real(wp) :: qs(0:7, 6) = 0
-      !> per thread, the sum and difference rows of grid_row_sym, (0:2 (nx + 1) - 1, 2, 0:nscr - 1)
+      !> per thread, the sum and difference rows of grid_row_sym, (0:2 (nx + 1) + 5, 2, 0:nscr - 1)
       real(wp), allocatable :: scr(:, :, :)
       integer :: nscr = 0
       !> per-dof masses and inverses of each class of grid row, (2 (nx + 1), nclass) [t], [1/t]
@@ -82,7 +82,8 @@ contains
       call symmetric_coefficients(this%s(:, :, :, :, 2, 2), this%sym, this%qs)
       if (this%sym) then
          this%nscr = max(omp_get_max_threads(), omp_get_num_procs())
-         allocate (this%scr(0:n - 1, 2, 0:this%nscr - 1))
+         ! (the difference row has three zeros either side: see grid_row_sym)
+         allocate (this%scr(0:n + 5, 2, 0:this%nscr - 1))
          this%scr = 0
       end if
       ! per-dof masses of every row; the class of row j is its row type (1 bottom, 2 inside, 3 top)
@@ -177,16 +178,19 @@ contains
          rt = row_type(j, ny)
          if (sym .and. rt == 2) then
             t = omp_get_thread_num()
+            call end_node(nx, ny, s, 0, j, 1, rt, u, f)
+            call end_node(nx, ny, s, nx, j, 3, rt, u, f)
             call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), f(1, 0, j), qs, &
-                              scr(:, 1, t), scr(:, 2, t))
+                              scr(:, 1, t), scr(:, 2, t), v(1, 0, j), rmass(:, rclass(j)), rminv(:, rclass(j)), &
+                              ca, cb, dt, w(1, 0, j), partial(:, j))
          else
             call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
                           cv(:, :, :, rt), cs(:, :, :, rt))
+            call end_node(nx, ny, s, 0, j, 1, rt, u, f)
+            call end_node(nx, ny, s, nx, j, 3, rt, u, f)
+            call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rminv(:, rclass(j)), &
+                            ca, cb, dt, w(1, 0, j), partial(:, j))
          end if
-         call end_node(nx, ny, s, 0, j, 1, rt, u, f)
-         call end_node(nx, ny, s, nx, j, 3, rt, u, f)
-         call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rminv(:, rclass(j)), &
-                         ca, cb, dt, w(1, 0, j), partial(:, j))
       end do
       !$omp end parallel do
    end subroutine sweep_grid
@@ -198,6 +202,17 @@ contains
       real(wp), intent(in) :: u0(0:n - 1), f(0:n - 1), m(0:n - 1), minv(0:n - 1), ca, cb, dt
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
+      part = 0
+      call range_update(0, n - 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
+      part(2) = 0.25_wp*part(2)
+   end subroutine row_update
+
+   !> The same on the outputs p0 .. p1 only, added to part, whose vbar sum lacks the factor 1/4.
+   subroutine range_update(p0, p1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
+      integer, intent(in) :: p0, p1, n
+      real(wp), intent(in) :: u0(0:n - 1), f(0:n - 1), m(0:n - 1), minv(0:n - 1), ca, cb, dt
+      real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
+      real(wp), intent(inout) :: part(4)
       integer :: p
       real(wp) :: vo, vs, wn, ek, ed, es, ea
       ek = 0
@@ -205,7 +220,7 @@ contains
       es = 0
       ea = 0
       !$omp simd private(vo, vs, wn) reduction(+:ek, ed, es, ea)
-      do p = 0, n - 1
+      do p = p0, p1
          vo = v(p)
          vs = ca*vo - cb*minv(p)*f(p)
          wn = u0(p) + dt*vs
@@ -216,8 +231,8 @@ contains
          v(p) = vs
          w(p) = wn
       end do
-      part = [ek, 0.25_wp*ed, es, ea]
-   end subroutine row_update
+      part = part + [ek, ed, es, ea]
+   end subroutine range_update
 
    !> K u on the interior nodes of one grid row as flat arrays of interleaved (x, y) values
    !> (n = 2 (nx + 1)).
@@ -274,43 +289,71 @@ contains
    end subroutine grid_row
 
    !> K u on the interior nodes of an inside grid row (rows j - 1, j, j + 1: um, u0, up) with a
-   !> stencil of the symmetries of a rectangle (symmetric_coefficients): with the row sum
-   !> S = um + up and E(p) = D(p + 1) - D(p - 3), D = up - um (zero outside the row),
+   !> stencil of the symmetries of a rectangle (symmetric_coefficients), fused with the
+   !> predictor and the energy sums. With the row sum S = um + up and difference D = up - um,
    !>    f(p) = A0 u0(p) + A2 (u0(p - 2) + u0(p + 2)) + B0 S(p) + B2 (S(p - 2) + S(p + 2))
-   !>           + CX E(p + 2) + CY E(p),
-   !> coefficients by the parity of p (x or y output): 8 multiply-adds per output instead of
-   !> 21, and 8 loads instead of 21.
-   subroutine grid_row_sym(n, um, u0, up, f, q, sb, eb)
+   !>           + CX (D(p + 3) - D(p - 1)) + CY (D(p + 1) - D(p - 3)),
+   !> coefficients by the parity of p (x or y output; CY = 0 for x, CX = 0 for y): 8
+   !> multiply-adds and 9 loads per output instead of 21 and 21. Blocks of four outputs (one
+   !> 256-bit vector; four lanes of partial sums), so that coefficients and sums stay in
+   !> registers. db has three entries either side of the row, zero (set once at set-up).
+   subroutine grid_row_sym(n, um, u0, up, f, q, sb, db, v, m, minv, ca, cb, dt, w, part)
       integer, intent(in) :: n
       real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 6)
-      real(wp), intent(inout) :: f(0:n - 1), sb(0:n - 1), eb(0:n - 1)
+      real(wp), intent(inout) :: f(0:n - 1), sb(0:n + 5), db(-3:n + 2)
+      real(wp), intent(in) :: m(0:n - 1), minv(0:n - 1), ca, cb, dt
+      real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
+      real(wp), intent(out) :: part(4)
       integer :: b, l, p, nb
-      if (n < 6) return   ! one column of elements: no interior node
-      ! E(0:2) and E(n - 1) are only ever multiplied by zero coefficients
-      sb(0:2) = um(0:2) + up(0:2)
-      sb(n - 1) = um(n - 1) + up(n - 1)
-      eb(0:2) = 0
-      eb(n - 1) = 0
-      !$omp simd
-      do p = 3, n - 2
-         sb(p) = um(p) + up(p)
-         eb(p) = (up(p + 1) - um(p + 1)) - (up(p - 3) - um(p - 3))
-      end do
-      ! outputs p = 2 .. n - 3 by blocks of eight (lane l has the parity of l), then one by one
-      nb = (n - 4)/8
-      do b = 0, nb - 1
-         !$omp simd private(p)
-         do l = 0, 7
-            p = 2 + 8*b + l
-            f(p) = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
-                   + (q(l, 5)*eb(p + 2) + q(l, 6)*eb(p))
+      real(wp) :: fp, vo, vs, wn, ek4(0:3), ed4(0:3), es4(0:3), ea4(0:3)
+      part = 0
+      if (n >= 6) then   ! else one column of elements: no interior node
+         !$omp simd
+         do p = 0, n - 1
+            sb(p) = um(p) + up(p)
+            db(p) = up(p) - um(p)
          end do
-      end do
-      do p = 2 + 8*nb, n - 3
-         l = mod(p, 2)
-         f(p) = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
-                + (q(l, 5)*eb(p + 2) + q(l, 6)*eb(p))
-      end do
+         ek4 = 0
+         ed4 = 0
+         es4 = 0
+         ea4 = 0
+         ! outputs p = 2 .. n - 3 by blocks of four (lane l has the parity of l)
+         nb = (n - 4)/4
+         do b = 0, nb - 1
+            !$omp simd private(p, fp, vo, vs, wn)
+            do l = 0, 3
+               p = 2 + 4*b + l
+               fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
+                     + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
+                    + (q(l, 5)*(db(p + 3) - db(p - 1)) + q(l, 6)*(db(p + 1) - db(p - 3)))
+               f(p) = fp
+               vo = v(p)
+               vs = ca*vo - cb*minv(p)*fp
+               wn = u0(p) + dt*vs
+               ek4(l) = ek4(l) + m(p)*vs*vs
+               ed4(l) = ed4(l) + m(p)*(vs + vo)**2
+               es4(l) = es4(l) + wn*fp
+               ea4(l) = ea4(l) + m(p)*(vs - vo)**2
+               v(p) = vs
+               w(p) = wn
+            end do
+         end do
+         do p = 2 + 4*nb, n - 3
+            l = mod(p, 2)
+            f(p) = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
+                    + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
+                   + (q(l, 5)*(db(p + 3) - db(p - 1)) + q(l, 6)*(db(p + 1) - db(p - 3)))
+         end do
+         ! the outputs left over: the end nodes (K u by the caller) and those after the blocks
+         call range_update(0, 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
+         call range_update(2 + 4*nb, n - 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
+         do l = 0, 3
+            part = part + [ek4(l), ed4(l), es4(l), ea4(l)]
+         end do
+      else
+         call range_update(0, n - 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
+      end if
+      part(2) = 0.25_wp*part(2)
    end subroutine grid_row_sym
 
    !> The interior stencil s2 = s(:, :, :, :, 2, 2) of a mesh of equal rectangles aligned with
