@@ -9,7 +9,9 @@
 !> and these sums at the loaded, prescribed and contact dofs (contact2d_explicit).
 !>
 !> Structured meshes of equal elements use nine stencils of 2 x 2 blocks (interior, four edges,
-!> four corners): every grid row is one vectorised loop, its two end nodes are done apart. The
+!> four corners): every grid row is one vectorised loop, its two end nodes are done apart;
+!> inside rows of a mesh of equal axis-aligned rectangles use the stencil's nine distinct values
+!> on row sums and differences, fused with the predictor and the sums (grid_row_sym). The
 !> nodal masses of such a mesh are the same along a grid row but for its end nodes (interior,
 !> edge and corner masses; mass scaling keeps that, every interior node of a row having the same
 !> row of K), so they are kept per class of row (bottom, inside, top): three short arrays that
@@ -24,7 +26,7 @@ module contact2d_sweep
    use omp_lib, only: omp_get_max_threads, omp_get_num_procs, omp_get_thread_num
    implicit none
    private
-   public :: sweep_t, sweep_stencils
+   public :: sweep_t
 
    !> Block rows per partial sum on general meshes.
    integer, parameter :: chunk_rows = 256
