@@ -1,13 +1,12 @@
-!> One sweep over memory per explicit step on a general (Gmsh) mesh (issue 13,
-!> docs/performance.md "general path"): chunk by chunk of block rows, the corrector of the
-!> previous step (velocities and the kinetic, damping, strain and alternating energy sums), the
-!> internal force K u^n from the block rows of contact2d_stiffness, and the predictor of this
-!> step, while the chunk is in cache.
+!> The sweep of contact2d_sweep on a general (Gmsh) mesh (issue 13, docs/performance.md
+!> "general path"): chunk by chunk of block rows, the internal force K u^n from the block rows
+!> of contact2d_stiffness, then, while the chunk is in cache, the predictor v* (written into v),
+!> u~ and the energy sums of v* (the quantities of contact2d_sweep's module header).
 !>
 !> The rows of a general mesh are all its nodes in node order (stiffness_init builds them so:
 !> row r is node r), so the per-node state is addressed directly and, inside a chunk, as flat
-!> arrays of interleaved (x, y) dofs: the corrector and the predictor are plain vector loops
-!> with per-dof masses.
+!> arrays of interleaved (x, y) dofs: the predictor and the sums are one plain vector loop with
+!> per-dof masses (held here: a general mesh has no row pattern to keep them shorter).
 !>
 !> Rows are stored with a fixed width of ell_width = 9 blocks (a node of a regular quad mesh has
 !> 9 neighbours, itself included; 94 % of the rows of the refined Hertz meshes): a shorter row is
@@ -40,6 +39,7 @@ module contact2d_rows
       integer(i8), allocatable :: xcol(:)       !< remainder: flat column offsets
       integer, allocatable :: xrow(:)           !< remainder: row of each extra block
       real(wp), allocatable :: xblk(:, :)       !< remainder: blocks (4, nextra) [N/mm]
+      real(wp), allocatable :: mdof(:), minvdof(:)   !< mass and 1/mass per dof (2 nnode) [t], [1/t]
    contains
       procedure :: init => rows_init
       procedure :: parts => rows_parts
@@ -49,7 +49,8 @@ module contact2d_rows
 contains
 
    !> Set-up: the block rows of a general mesh (stiff%row_start, blk_col, blk; row r is node r)
-   !> in the layout of the sweep, blocks in the order of stiff (increasing column node).
+   !> in the layout of the sweep, blocks in the order of stiff (increasing column node), and the
+   !> per-dof masses (stiff%mass, after any mass scaling).
    subroutine rows_init(this, stiff)
       class(rows_t), intent(out) :: this
       type(stiffness_t), intent(in) :: stiff
@@ -81,6 +82,8 @@ contains
          end do
       end do
       this%xstart(this%nnode + 1) = nx + 1
+      this%mdof = reshape(spread(stiff%mass, 1, 2), [2*this%nnode])
+      this%minvdof = 1/this%mdof
    end subroutine rows_init
 
    !> Number of partial sums (chunks of block rows) of rows_sweep.
@@ -89,80 +92,57 @@ contains
       n = (this%nnode + chunk_rows - 1)/chunk_rows
    end function rows_parts
 
-   !> One sweep on a general mesh: if pending, first the corrector of the previous step at each
-   !> node of a chunk,
-   !>    v = (u - uold)/dt,  partial = (sum m v^2, sum m ((v + v_old)/2)^2, sum u . f_old,
-   !>    sum m (v - v_old)^2);
-   !> then f = K u and w = u + c1 v - c2 M^-1 f on the chunk.
-   subroutine rows_sweep(this, u, uold, v, f, mdof, minvdof, c1, c2, rdt, pending, w, partial)
+   !> One sweep on a general mesh, chunk by chunk of block rows: f = K u, then on the chunk's
+   !> dofs v* = ca v - cb M^-1 f (written into v), w = u + dt v* and the chunk's partial sums
+   !>    (sum m v*^2, sum m ((v* + v)/2)^2, sum w . f, sum m (v* - v)^2)
+   !> (the quantities of contact2d_sweep's module header).
+   subroutine rows_sweep(this, u, v, f, ca, cb, dt, w, partial)
       class(rows_t), intent(in) :: this
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
-      real(wp), intent(in) :: uold(:, :)    !< u^(n-1) (used if pending) [mm]
-      real(wp), intent(inout) :: v(:, :)    !< v^(n-3/2) in, v^(n-1/2) out if pending [mm/s]
-      real(wp), intent(inout) :: f(:, :)    !< K u^(n-1) in, K u^n out [N]
-      real(wp), intent(in) :: mdof(:), minvdof(:)   !< mass and 1/mass per dof (2 nnode)
-      real(wp), intent(in) :: c1, c2, rdt
-      logical, intent(in) :: pending
+      real(wp), intent(inout) :: v(:, :)    !< v^(n-1/2) in, v* out [mm/s]
+      real(wp), intent(inout) :: f(:, :)    !< K u^n out [N]
+      real(wp), intent(in) :: ca, cb, dt    !< (1 - a dt/2)/(1 + a dt/2), dt/(1 + a dt/2) [s], dt [s]
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       real(wp), intent(inout) :: partial(:, :)   !< (4, rows_parts)
       call sweep_chunks(this%nnode, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, this%xrow, this%xblk, &
-                        u, uold, v, f, mdof, minvdof, c1, c2, rdt, pending, w, partial, &
-                        this%nnode >= omp_min_nodes)
+                        u, v, f, this%mdof, this%minvdof, ca, cb, dt, w, partial, this%nnode >= omp_min_nodes)
    end subroutine rows_sweep
 
    !> The chunks, shared among threads (explicit-shape arrays: unit strides known to the compiler).
-   subroutine sweep_chunks(nnode, nx, col, blk, xstart, xcol, xrow, xblk, u, uold, v, f, mdof, minvdof, c1, c2, rdt, &
-                           pending, w, partial, par)
+   subroutine sweep_chunks(nnode, nx, col, blk, xstart, xcol, xrow, xblk, u, v, f, mdof, minvdof, ca, cb, dt, &
+                           w, partial, par)
       integer, intent(in) :: nnode, nx
       integer(i8), intent(in) :: col(ell_width, nnode), xcol(nx)
       real(wp), intent(in) :: blk(4, ell_width, nnode), xblk(4, nx)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx)
-      real(wp), intent(in) :: u(2*nnode), uold(2*nnode), mdof(2*nnode), minvdof(2*nnode), c1, c2, rdt
+      real(wp), intent(in) :: u(2*nnode), mdof(2*nnode), minvdof(2*nnode), ca, cb, dt
       real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode)
-      logical, intent(in) :: pending, par
+      logical, intent(in) :: par
       real(wp), intent(inout) :: partial(4, *)
       integer :: c, r0, r1
       !$omp parallel do schedule(dynamic) if(par) private(r0, r1)
       do c = 1, (nnode + chunk_rows - 1)/chunk_rows
          r0 = (c - 1)*chunk_rows + 1
          r1 = min(c*chunk_rows, nnode)
-         call chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, u, uold, v, f, mdof, minvdof, c1, c2, rdt, &
-                    pending, w, partial(:, c))
+         call chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, u, v, f, mdof, minvdof, ca, cb, dt, &
+                    w, partial(:, c))
       end do
       !$omp end parallel do
    end subroutine sweep_chunks
 
-   !> Rows r0 .. r1: corrector (flat dofs 2 r0 - 1 .. 2 r1), products, predictor.
-   subroutine chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, u, uold, v, f, mdof, minvdof, c1, c2, rdt, &
-                    pending, w, part)
+   !> Rows r0 .. r1: products, then predictor and sums on the flat dofs 2 r0 - 1 .. 2 r1.
+   subroutine chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, u, v, f, mdof, minvdof, ca, cb, dt, &
+                    w, part)
       integer, intent(in) :: nnode, nx, r0, r1
       integer(i8), intent(in) :: col(ell_width, nnode), xcol(nx)
       real(wp), intent(in) :: blk(4, ell_width, nnode), xblk(4, nx)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx)
-      real(wp), intent(in) :: u(2*nnode), uold(2*nnode), mdof(2*nnode), minvdof(2*nnode), c1, c2, rdt
+      real(wp), intent(in) :: u(2*nnode), mdof(2*nnode), minvdof(2*nnode), ca, cb, dt
       real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode)
-      logical, intent(in) :: pending
       real(wp), intent(out) :: part(4)
       integer :: d, r, i, k
       integer(i8) :: j
-      real(wp) :: vn, ek, ed, es, ea, p1, p2, p3, p4, q1, q2, q3, q4, s1, s2, s3, s4
-      ek = 0
-      ed = 0
-      es = 0
-      ea = 0
-      if (pending) then
-         ! reads f (K u^(n-1)) before the products below overwrite it
-         !$omp simd private(vn) reduction(+:ek, ed, es, ea)
-         do d = 2*r0 - 1, 2*r1
-            vn = (u(d) - uold(d))*rdt
-            ek = ek + mdof(d)*vn*vn
-            ed = ed + mdof(d)*(0.5_wp*(vn + v(d)))**2
-            es = es + u(d)*f(d)
-            ea = ea + mdof(d)*(vn - v(d))**2
-            v(d) = vn
-         end do
-      end if
-      part = [ek, ed, es, ea]
+      real(wp) :: vo, vs, wn, ek, ed, es, ea, p1, p2, p3, p4, q1, q2, q3, q4, s1, s2, s3, s4
       do r = r0, r1
          ! blocks 1, 4, 7 into p; 2, 5, 8 into q; 3, 6, 9 into s (ell_width = 9)
          p1 = 0; p2 = 0; p3 = 0; p4 = 0
@@ -196,9 +176,24 @@ contains
          f(2*r - 1) = f(2*r - 1) + (xblk(1, k)*u(j + 1) + xblk(3, k)*u(j + 2))
          f(2*r) = f(2*r) + (xblk(2, k)*u(j + 1) + xblk(4, k)*u(j + 2))
       end do
-      !$omp simd
+      ! predictor and sums while the chunk is in cache (as range_update of contact2d_sweep; the
+      ! vbar sum gets its factor 1/4 once per chunk)
+      ek = 0
+      ed = 0
+      es = 0
+      ea = 0
+      !$omp simd private(vo, vs, wn) reduction(+:ek, ed, es, ea)
       do d = 2*r0 - 1, 2*r1
-         w(d) = u(d) + c1*v(d) - c2*minvdof(d)*f(d)
+         vo = v(d)
+         vs = ca*vo - cb*minvdof(d)*f(d)
+         wn = u(d) + dt*vs
+         ek = ek + mdof(d)*vs*vs
+         ed = ed + mdof(d)*(vs + vo)**2
+         es = es + wn*f(d)
+         ea = ea + mdof(d)*(vs - vo)**2
+         v(d) = vs
+         w(d) = wn
       end do
+      part = [ek, 0.25_wp*ed, es, ea]
    end subroutine chunk
 end module contact2d_rows

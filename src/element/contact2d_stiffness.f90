@@ -48,7 +48,6 @@ module contact2d_stiffness
    contains
       procedure :: init => stiffness_init
       procedure :: apply => stiffness_apply
-      procedure :: apply_update => stiffness_apply_update
       procedure :: apply_elements => stiffness_apply_elements
       procedure :: dt_critical => stiffness_dt_critical
       procedure :: power_omega2 => stiffness_power_omega2
@@ -229,37 +228,18 @@ contains
       class(stiffness_t), intent(in) :: this
       real(wp), intent(in) :: u(:, :)      !< displacements (2, nnode) [mm]
       real(wp), intent(inout) :: f(:, :)   !< internal forces (2, nnode) [N], all overwritten
-      ! without the update the v, minv and w arguments are never referenced: placeholders
+      ! one parallel region; the loops inside are work-shared (orphaned omp do)
       !$omp parallel if(this%nnode >= omp_min_nodes)
-      if (this%structured) call apply_structured(this, this%nx, this%ny, u, f, u, this%mass, 0.0_wp, 0.0_wp, f, .false.)
-      call apply_rows(this, u, f, u, this%mass, 0.0_wp, 0.0_wp, f, .false.)
+      if (this%structured) call apply_structured(this, this%nx, this%ny, u, f)
+      call apply_rows(this, u, f)
       !$omp end parallel
    end subroutine stiffness_apply
 
-   !> f = K u and, in the same pass over memory, w = u + c1 v - c2 M^-1 f: the central-difference
-   !> predictor fused with the internal force (SPEC section 4, steps 1-2).
-   subroutine stiffness_apply_update(this, u, f, v, minv, c1, c2, w)
-      class(stiffness_t), intent(in) :: this
-      real(wp), intent(in) :: u(:, :)      !< u^n (2, nnode) [mm]
-      real(wp), intent(inout) :: f(:, :)   !< K u^n (2, nnode) [N], all overwritten
-      real(wp), intent(in) :: v(:, :)      !< v^(n-1/2) (2, nnode) [mm/s]
-      real(wp), intent(in) :: minv(:)      !< 1/m per node [1/t]
-      real(wp), intent(in) :: c1, c2       !< coefficients [s], [s^2]
-      real(wp), intent(inout) :: w(:, :)   !< u~ (2, nnode) [mm], all overwritten
-      ! one parallel region; the loops inside are work-shared (orphaned omp do)
-      !$omp parallel if(this%nnode >= omp_min_nodes)
-      if (this%structured) call apply_structured(this, this%nx, this%ny, u, f, v, minv, c1, c2, w, .true.)
-      call apply_rows(this, u, f, v, minv, c1, c2, w, .true.)
-      !$omp end parallel
-   end subroutine stiffness_apply_update
-
-   !> f(:, n) = sum of the 2 x 2 blocks of row n times u, for the block rows of K; with update,
-   !> also w(:, n) = u(:, n) + c1 v(:, n) - c2 minv(n) f(:, n).
-   subroutine apply_rows(this, u, f, v, minv, c1, c2, w, update)
+   !> f(:, n) = sum of the 2 x 2 blocks of row n times u, for the block rows of K.
+   subroutine apply_rows(this, u, f)
       type(stiffness_t), intent(in) :: this
-      real(wp), intent(in) :: u(:, :), v(:, :), minv(:), c1, c2
-      real(wp), intent(inout) :: f(:, :), w(:, :)
-      logical, intent(in) :: update
+      real(wp), intent(in) :: u(:, :)
+      real(wp), intent(inout) :: f(:, :)
       integer :: r, k, m, n
       real(wp) :: fx, fy
       !$omp do schedule(static)
@@ -274,10 +254,6 @@ contains
          n = this%row_node(r)
          f(1, n) = fx
          f(2, n) = fy
-         if (update) then
-            w(1, n) = u(1, n) + c1*v(1, n) - c2*minv(n)*fx
-            w(2, n) = u(2, n) + c1*v(2, n) - c2*minv(n)*fy
-         end if
       end do
       !$omp end do
    end subroutine apply_rows
@@ -285,12 +261,11 @@ contains
    !> Structured mesh of equal elements, u and f seen as (2, 0:nx, 0:ny): the 9-point stencil on
    !> interior nodes (vectorised along rows, rows shared among threads), block rows on the
    !> boundary nodes.
-   subroutine apply_structured(this, nx, ny, u, f, v, minv, c1, c2, w, update)
+   subroutine apply_structured(this, nx, ny, u, f)
       type(stiffness_t), intent(in) :: this
       integer, intent(in) :: nx, ny
-      real(wp), intent(in) :: u(2, 0:nx, 0:ny), v(2, 0:nx, 0:ny), minv(0:nx, 0:ny), c1, c2
-      real(wp), intent(inout) :: f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
-      logical, intent(in) :: update
+      real(wp), intent(in) :: u(2, 0:nx, 0:ny)
+      real(wp), intent(inout) :: f(2, 0:nx, 0:ny)
       integer :: i, j
       real(wp) :: fx, fy, s(2, 2, -1:1, -1:1)
       s = this%stencil   ! a local copy: the compiler then sees no aliasing and vectorises
@@ -318,13 +293,6 @@ contains
             f(1, i, j) = fx
             f(2, i, j) = fy
          end do
-         ! the predictor on this row while it is in cache
-         if (update) then
-            do i = 1, nx - 1
-               w(1, i, j) = u(1, i, j) + c1*v(1, i, j) - c2*minv(i, j)*f(1, i, j)
-               w(2, i, j) = u(2, i, j) + c1*v(2, i, j) - c2*minv(i, j)*f(2, i, j)
-            end do
-         end if
       end do
       ! no barrier: the boundary rows that follow write other nodes and only read u
       !$omp end do nowait

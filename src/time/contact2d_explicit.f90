@@ -7,6 +7,9 @@
 !>      prescribed dofs take their value at t_(n+1)
 !>   3. contact forces F_c chosen so that u^(n+1) = u~ + c M^-1 F_c meets the constraints
 !>   4. v^(n+1/2) = (u^(n+1) - u^n)/dt, energies of SPEC section 6.
+!> Steps 1-2 and the energy sums are one sweep over memory (contact2d_sweep), which writes v*
+!> as the new velocity; step 4 then only corrects the dofs that step 2's loads, the prescribed
+!> values or step 3 moved (docs/performance.md, issue 13).
 !> The step does no I/O and no allocation.
 module contact2d_explicit
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -15,8 +18,7 @@ module contact2d_explicit
    use contact2d_loading, only: loading_t
    use contact2d_contact, only: contact_t
    use contact2d_sys, only: sys_signal_pending
-   use contact2d_sweep, only: sweep_stencils, sweep_parts, sweep_step
-   use contact2d_rows, only: rows_t
+   use contact2d_sweep, only: sweep_t
    implicit none
    private
    public :: explicit_t, damping_none, damping_given, damping_auto
@@ -47,20 +49,18 @@ module contact2d_explicit
       real(wp), allocatable :: u(:, :)     !< u^n [mm]
       real(wp), allocatable :: v(:, :)     !< v^(n-1/2) [mm/s]
       real(wp), allocatable :: unew(:, :)  !< u~, then u^(n+1) [mm]
-      real(wp), allocatable :: uold(:, :)  !< u^(n-1) while the corrector is pending [mm]
-      !> the corrector of the last step is still to be done (it is fused into the next sweep)
-      logical :: pending = .false.
-      real(wp) :: alpha_prev = 0           !< damping of the last step (pending corrector)
-      real(wp) :: stencils(2, 2, -1:1, -1:1, 3, 3) = 0   !< structured-mesh stencils (sweep)
-      real(wp), allocatable :: rowsum(:, :)  !< per-row sums of the sweep (3, sweep_parts)
-      type(rows_t) :: rows                 !< block rows of a general mesh (contact2d_rows)
+      type(sweep_t) :: sweep               !< K u, predictor and energy sums in one pass
+      !> dofs whose u~ changes after the sweep (loads, prescribed, contact nodes), as indices of
+      !> the flattened (2 nnode) arrays, their nodes, and their v^(n-1/2), v* and u~ of the
+      !> current step; set up by the first advance
+      integer, allocatable :: sdof(:), snode(:)
+      real(wp), allocatable :: s_vold(:), s_vstar(:), s_wstar(:)
+      integer :: s_ncontact = -1           !< contact nodes when sdof was built
       real(wp), allocatable :: fint(:, :)  !< K u^n of the last step [N]
       real(wp), allocatable :: fext(:, :)  !< f_ext(t_n) of the last step [N]
       real(wp), allocatable :: fc(:, :)    !< contact force on the body of the last step [N]
       real(wp), allocatable :: mass(:)     !< lumped mass [t]
       real(wp), allocatable :: minv(:)     !< 1 / lumped mass [1/t]
-      real(wp), allocatable :: mdof(:)     !< lumped mass per dof, (2 nnode) [t]
-      real(wp), allocatable :: minvdof(:)  !< 1 / lumped mass per dof, (2 nnode) [1/t]
       integer :: nblock = 0                !< blocks of block_size nodes
       real(wp), allocatable :: partial(:, :)  !< per-block sums (4, nblock)
       real(wp), allocatable :: cval(:)     !< curve values at t_n
@@ -76,7 +76,7 @@ module contact2d_explicit
       real(wp) :: damping_dissipation = 0
       real(wp) :: initial_kinetic = 0      !< 1/2 v^(-1/2) M v^(-1/2), energy put in at t = 0 (issue 12)
       logical :: blown_up = .false.
-      !> sum m (v^(n+1/2) - v^(n-1/2))^2 / sum m (v^(n+1/2))^2 of the last corrector: close to 4
+      !> sum m (v^(n+1/2) - v^(n-1/2))^2 / sum m (v^(n+1/2))^2 of the last step: close to 4
       !> for a mode that changes sign every step (the one that grows when dt is too long)
       real(wp) :: alternating = 0
       real(wp) :: alternating_energy = 0   !< 1/2 sum m (v^(n+1/2) - v^(n-1/2))^2 [mJ]
@@ -117,20 +117,11 @@ contains
       this%alpha_next = this%alpha
       this%damping_interval = damping_interval
       allocate (this%u(2, nnode), this%v(2, nnode), this%unew(2, nnode), this%fint(2, nnode), &
-                this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode), this%uold(2, nnode))
-      this%u = 0; this%v = 0; this%unew = 0; this%fint = 0; this%fext = 0; this%fc = 0; this%uold = 0
-      if (stiff%structured) call sweep_stencils(stiff%ke(:, :, 1), this%stencils)
-      if (stiff%structured) then
-         allocate (this%rowsum(4, sweep_parts(stiff)))
-      else
-         ! general meshes: the block rows in the layout of contact2d_rows
-         call this%rows%init(stiff)
-         allocate (this%rowsum(4, this%rows%parts()))
-      end if
+                this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode))
+      this%u = 0; this%v = 0; this%unew = 0; this%fint = 0; this%fext = 0; this%fc = 0
+      call this%sweep%init(stiff)
       this%mass = stiff%mass
       this%minv = 1/stiff%mass
-      this%mdof = reshape(spread(stiff%mass, 1, 2), [2*nnode])
-      this%minvdof = 1/this%mdof
       this%nblock = (nnode + block_size - 1)/block_size
       allocate (this%partial(4, this%nblock))
       allocate (this%cval(load%ncurve), this%cnext(load%ncurve))
@@ -158,26 +149,26 @@ contains
       type(contact_t), intent(inout) :: contact
       integer, intent(in) :: nsteps
       integer :: k, p, node, comp
-      real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, acc, f
+      real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, acc, f, corr(4)
       real(wp), allocatable :: swap(:, :)
 
+      ! set-up, outside the step loop: the dofs that change after the sweep
+      if (.not. allocated(this%sdof) .or. this%s_ncontact /= merge(contact%nc, 0, contact%active)) &
+         call special_dofs(this, load, contact)
       dt = this%dt
       do k = 1, nsteps
          ! 1-2. internal force at u^n and, fused with it, the predictor without the loads:
-         !      u~ = u + (dt/(1 + a dt/2)) (a1 v - dt M^-1 f_int)
+         !      v* = (a1 v - dt M^-1 f_int)/(1 + a dt/2), u~ = u + dt v*
          this%alpha = this%alpha_next
          a1 = 1 - 0.5_wp*this%alpha*dt
          a2inv = 1/(1 + 0.5_wp*this%alpha*dt)
          c = dt*dt*a2inv
-         ! one sweep: the corrector of the last step (if pending), K u^n and the predictor
-         if (stiff%structured) then
-            call sweep_step(stiff, this%stencils, this%u, this%uold, this%v, this%fint, this%minv, this%mass, &
-                            this%mdof, this%minvdof, dt*a2inv*a1, c, 1/dt, this%pending, this%unew, this%rowsum)
-         else
-            call this%rows%sweep(this%u, this%uold, this%v, this%fint, this%mdof, this%minvdof, dt*a2inv*a1, c, &
-                            1/dt, this%pending, this%unew, this%rowsum)
-         end if
-         if (this%pending) call add_energies(this, this%rowsum, this%alpha_prev, dt)
+         call special_gather(size(this%sdof), this%sdof, this%v, this%s_vold)
+         ! one sweep: K u^n, v* (into v), u~ and the energy sums of v*
+         call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew)
+         ! the dofs changed below: keep v* and u~, give back v^(n-1/2) (loads, reactions and
+         ! the contact step use it)
+         call special_keep(size(this%sdof), this%sdof, this%v, this%unew, this%s_vold, this%s_vstar, this%s_wstar)
          ! automatic damping: a new alpha from (u^n, K u^n), used from the next step on
          if (this%damping == damping_auto) then
             if (mod(this%step, int(this%damping_interval, i8)) == 0) call this%update_damping(stiff, load)
@@ -221,18 +212,18 @@ contains
          end do
          this%external_work = this%external_work + work
          this%work_in = this%work_in + abs(work)
-         ! 4b. velocities and energies: pending, done in the next sweep (or below, on return);
-         !     u^(n+1) becomes u, u^n becomes uold (the arrays are rotated, not copied)
-         call move_alloc(this%uold, swap)
-         call move_alloc(this%u, this%uold)
+         ! 4b. velocities and energies: v^(n+1/2) = v* but at the changed dofs, where it is
+         !     (u^(n+1) - u^n)/dt and the sums of the sweep are corrected (in a fixed order)
+         call special_correct(size(this%sdof), this%sdof, this%snode, this%mass, this%u, this%unew, this%fint, dt, &
+                              this%s_vold, this%s_vstar, this%s_wstar, this%v, corr)
+         call add_energies(this, this%sweep%partial, corr, this%alpha, dt)
+         ! u^(n+1) becomes u (the arrays are swapped, not copied)
+         call move_alloc(this%u, swap)
          call move_alloc(this%unew, this%u)
          call move_alloc(swap, this%unew)
-         this%pending = .true.
-         this%alpha_prev = this%alpha
          this%step = this%step + 1
          this%time = this%time0 + real(this%step - this%step0, wp)*dt
-         ! blow-up guard: runaway kinetic energy or non-finite values (the energies of the
-         ! sweep lag one step)
+         ! blow-up guard: runaway kinetic energy or non-finite values
          if (.not. ieee_is_finite(this%kinetic) .or. &
              this%kinetic > blowup_ratio*max(this%work_in, tiny(1.0_wp))) then
             this%blown_up = .true.
@@ -244,11 +235,94 @@ contains
          end if
          if (contact%stat /= 0 .or. sys_signal_pending() /= 0) return
       end do
-      ! on return the state is complete: v^(n+1/2) and the energies of the last step
-      if (this%pending) call corrector(this, dt)
-      if (.not. ieee_is_finite(this%kinetic) .or. &
-          this%kinetic > blowup_ratio*max(this%work_in, tiny(1.0_wp))) this%blown_up = .true.
    end subroutine explicit_advance
+
+   !> The dofs whose u~ is changed after the sweep: loaded, prescribed and contact-node dofs,
+   !> each once, in dof order.
+   subroutine special_dofs(this, load, contact)
+      type(explicit_t), intent(inout) :: this
+      type(loading_t), intent(in) :: load
+      type(contact_t), intent(in) :: contact
+      logical, allocatable :: mark(:, :)
+      integer :: p, i, n, comp, node
+      allocate (mark(2, this%nnode))
+      mark = .false.
+      do p = 1, load%ntrac
+         mark(load%tcomp(p), load%tnode(p)) = .true.
+      end do
+      do p = 1, load%npres
+         mark(load%pcomp(p), load%pnode(p)) = .true.
+      end do
+      this%s_ncontact = 0
+      if (contact%active) then
+         do i = 1, contact%nc
+            mark(:, contact%node(i)) = .true.
+         end do
+         this%s_ncontact = contact%nc
+      end if
+      n = count(mark)
+      if (allocated(this%sdof)) deallocate (this%sdof, this%snode, this%s_vold, this%s_vstar, this%s_wstar)
+      allocate (this%sdof(n), this%snode(n), this%s_vold(n), this%s_vstar(n), this%s_wstar(n))
+      n = 0
+      do node = 1, this%nnode
+         do comp = 1, 2
+            if (.not. mark(comp, node)) cycle
+            n = n + 1
+            this%sdof(n) = 2*(node - 1) + comp
+            this%snode(n) = node
+         end do
+      end do
+   end subroutine special_dofs
+
+   !> vold = v at the listed dofs (flattened arrays).
+   subroutine special_gather(n, dof, v, vold)
+      integer, intent(in) :: n, dof(n)
+      real(wp), intent(in) :: v(*)
+      real(wp), intent(out) :: vold(n)
+      integer :: q
+      do q = 1, n
+         vold(q) = v(dof(q))
+      end do
+   end subroutine special_gather
+
+   !> At the listed dofs, right after the sweep: keep v* and u~, give v^(n-1/2) back to v.
+   subroutine special_keep(n, dof, v, w, vold, vstar, wstar)
+      integer, intent(in) :: n, dof(n)
+      real(wp), intent(inout) :: v(*)
+      real(wp), intent(in) :: w(*), vold(n)
+      real(wp), intent(out) :: vstar(n), wstar(n)
+      integer :: q
+      do q = 1, n
+         vstar(q) = v(dof(q))
+         wstar(q) = w(dof(q))
+         v(dof(q)) = vold(q)
+      end do
+   end subroutine special_keep
+
+   !> At the listed dofs, after the contact step: v^(n+1/2) = (u^(n+1) - u^n)/dt, and the changes
+   !> of the sweep's sums (m v^2, m vbar^2, u . K u, m dv^2) from v* and u~ to these values, in
+   !> list order.
+   subroutine special_correct(n, dof, node, mass, u, unew, fint, dt, vold, vstar, wstar, v, corr)
+      integer, intent(in) :: n, dof(n), node(n)
+      real(wp), intent(in) :: mass(*), u(*), unew(*), fint(*), dt, vold(n), vstar(n), wstar(n)
+      real(wp), intent(inout) :: v(*)
+      real(wp), intent(out) :: corr(4)
+      integer :: q, d
+      real(wp) :: m, vo, vs, vn
+      corr = 0
+      do q = 1, n
+         d = dof(q)
+         m = mass(node(q))
+         vo = vold(q)
+         vs = vstar(q)
+         vn = (unew(d) - u(d))/dt
+         corr(1) = corr(1) + m*(vn*vn - vs*vs)
+         corr(2) = corr(2) + m*((0.5_wp*(vn + vo))**2 - (0.5_wp*(vs + vo))**2)
+         corr(3) = corr(3) + (unew(d) - wstar(q))*fint(d)
+         corr(4) = corr(4) + m*((vn - vo)**2 - (vs - vo)**2)
+         v(d) = vn
+      end do
+   end subroutine special_correct
 
 
    !> Growing-mode guard, every step: a mode above the stability limit changes sign every step
@@ -290,20 +364,11 @@ contains
       this%guard_kin_rise = 0
    end subroutine explicit_set_dt
 
-   !> The pending corrector on its own (u is u^(n+1), uold u^n): v^(n+1/2) = (u^(n+1) - u^n)/dt;
-   !> kinetic, strain and damping energies.
-   subroutine corrector(this, dt)
+   !> Energies of the step from the sweep's partial sums (m v^2, m vbar^2, u . K u, m dv^2), added
+   !> in order, and the corrections of the changed dofs.
+   subroutine add_energies(this, partial, corr, alpha, dt)
       type(explicit_t), intent(inout) :: this
-      real(wp), intent(in) :: dt
-      call corrector_blocks(2*this%nnode, this%nblock, dt, this%u, this%uold, this%fint, this%mdof, &
-                            this%v, this%partial)
-      call add_energies(this, this%partial, this%alpha_prev, dt)
-   end subroutine corrector
-
-   !> Energies of the corrector from its partial sums (m v^2, m vbar^2, u . K u), added in order.
-   subroutine add_energies(this, partial, alpha, dt)
-      type(explicit_t), intent(inout) :: this
-      real(wp), intent(in) :: partial(:, :), alpha, dt
+      real(wp), intent(in) :: partial(:, :), corr(4), alpha, dt
       real(wp) :: ekin, edamp, estrain, ealt
       integer :: b
       ekin = 0
@@ -316,6 +381,10 @@ contains
          estrain = estrain + partial(3, b)
          ealt = ealt + partial(4, b)
       end do
+      ekin = ekin + corr(1)
+      edamp = edamp + corr(2)
+      estrain = estrain + corr(3)
+      ealt = ealt + corr(4)
       ! (not merge: both of its arguments are evaluated, and 0/0 traps in Debug builds)
       if (ekin > 0) then
          this%alternating = ealt/ekin
@@ -326,41 +395,7 @@ contains
       this%kinetic = 0.5_wp*ekin
       this%strain = 0.5_wp*estrain
       this%damping_dissipation = this%damping_dissipation + alpha*dt*edamp
-      this%pending = .false.
    end subroutine add_energies
-
-   !> The corrector on the flattened dofs, block by block. Within a block the sums are vector
-   !> reductions (OpenMP simd: their order is fixed by the compiled code) and the blocks are
-   !> added in order, so the bits do not depend on the number of threads.
-   subroutine corrector_blocks(ndof, nblock, dt, unew, u, fint, mdof, v, partial)
-      integer, intent(in) :: ndof, nblock
-      real(wp), intent(in) :: dt
-      real(wp), intent(in) :: unew(ndof), u(ndof), fint(ndof), mdof(ndof)
-      real(wp), intent(inout) :: v(ndof)
-      real(wp), intent(out) :: partial(4, nblock)
-      integer :: b, d
-      real(wp) :: rdt, vn, vb, ek, ed, es, ea
-      rdt = 1/dt
-      !$omp parallel do schedule(static) private(d, vn, vb, ek, ed, es, ea) if(ndof >= 2*omp_min_nodes)
-      do b = 1, nblock
-         ek = 0
-         ed = 0
-         es = 0
-         ea = 0
-         !$omp simd private(vn, vb) reduction(+:ek, ed, es, ea)
-         do d = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
-            vn = (unew(d) - u(d))*rdt
-            vb = 0.5_wp*(vn + v(d))
-            ek = ek + mdof(d)*vn*vn
-            ed = ed + mdof(d)*vb*vb
-            es = es + unew(d)*fint(d)
-            ea = ea + mdof(d)*(vn - v(d))**2
-            v(d) = vn
-         end do
-         partial(:, b) = [ek, ed, es, ea]
-      end do
-      !$omp end parallel do
-   end subroutine corrector_blocks
 
    !> Automatic damping (dynamic relaxation, SPEC section 5): alpha = 2 omega_1, with omega_1^2
    !> the Rayleigh quotient of the free part du_f of the displacement increment since the last
@@ -384,7 +419,7 @@ contains
          this%work(load%pcomp(p), load%pnode(p)) = 0
       end do
       ! du_f^T K du_f and du_f^T M du_f by blocks; the marks move to (u, f_int)
-      call rayleigh_blocks(2*this%nnode, this%nblock, this%u, this%fint, load%free, this%mdof, &
+      call rayleigh_blocks(this%nnode, this%nblock, this%u, this%fint, load%free, this%mass, &
                            this%u_mark, this%f_mark, this%partial)
       num = 0
       den = 0
@@ -412,24 +447,27 @@ contains
 
    !> Per block: sum of du_f kdu and of m du_f^2 with du_f = (u - u_mark) free; then u_mark = u,
    !> f_mark = f_int. Block sums are added in order by the caller (thread-independent bits).
-   subroutine rayleigh_blocks(ndof, nblock, u, fint, free, mdof, u_mark, f_mark, partial)
-      integer, intent(in) :: ndof, nblock
-      real(wp), intent(in) :: u(ndof), fint(ndof), free(ndof), mdof(ndof)
-      real(wp), intent(inout) :: u_mark(ndof), f_mark(ndof)
+   subroutine rayleigh_blocks(nnode, nblock, u, fint, free, mass, u_mark, f_mark, partial)
+      integer, intent(in) :: nnode, nblock
+      real(wp), intent(in) :: u(2, nnode), fint(2, nnode), free(2, nnode), mass(nnode)
+      real(wp), intent(inout) :: u_mark(2, nnode), f_mark(2, nnode)
       real(wp), intent(inout) :: partial(4, nblock)
       integer :: b, i
-      real(wp) :: du, num, den
-      !$omp parallel do schedule(static) private(i, du, num, den) if(ndof >= 2*omp_min_nodes)
+      real(wp) :: dx, dy, num, den
+      !$omp parallel do schedule(static) private(i, dx, dy, num, den) if(nnode >= omp_min_nodes)
       do b = 1, nblock
          num = 0
          den = 0
-         !$omp simd private(du) reduction(+:num, den)
-         do i = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
-            du = (u(i) - u_mark(i))*free(i)
-            num = num + du*f_mark(i)
-            den = den + mdof(i)*du*du
-            u_mark(i) = u(i)
-            f_mark(i) = fint(i)
+         !$omp simd private(dx, dy) reduction(+:num, den)
+         do i = (b - 1)*block_size + 1, min(b*block_size, nnode)
+            dx = (u(1, i) - u_mark(1, i))*free(1, i)
+            dy = (u(2, i) - u_mark(2, i))*free(2, i)
+            num = num + (dx*f_mark(1, i) + dy*f_mark(2, i))
+            den = den + mass(i)*(dx*dx + dy*dy)
+            u_mark(1, i) = u(1, i)
+            u_mark(2, i) = u(2, i)
+            f_mark(1, i) = fint(1, i)
+            f_mark(2, i) = fint(2, i)
          end do
          partial(1, b) = num
          partial(2, b) = den
