@@ -60,6 +60,7 @@ module contact2d_explicit
       real(wp), allocatable :: fext(:, :)  !< f_ext(t_n) of the last step [N]
       real(wp), allocatable :: fc(:, :)    !< contact force on the body of the last step [N]
       real(wp), allocatable :: mass(:)     !< lumped mass [t]
+      real(wp), allocatable :: mdof(:)     !< lumped mass per dof (2 nnode), for the Rayleigh sums [t]
       real(wp), allocatable :: minv(:)     !< 1 / lumped mass [1/t]
       integer :: nblock = 0                !< blocks of block_size nodes
       real(wp), allocatable :: partial(:, :)  !< per-block sums (4, nblock)
@@ -122,6 +123,7 @@ contains
       call this%sweep%init(stiff)
       this%mass = stiff%mass
       this%minv = 1/stiff%mass
+      this%mdof = reshape(spread(stiff%mass, 1, 2), [2*nnode])
       this%nblock = (nnode + block_size - 1)/block_size
       allocate (this%partial(4, this%nblock))
       allocate (this%cval(load%ncurve), this%cnext(load%ncurve))
@@ -419,7 +421,7 @@ contains
          this%work(load%pcomp(p), load%pnode(p)) = 0
       end do
       ! du_f^T K du_f and du_f^T M du_f by blocks; the marks move to (u, f_int)
-      call rayleigh_blocks(this%nnode, this%nblock, this%u, this%fint, load%free, this%mass, &
+      call rayleigh_blocks(2*this%nnode, this%nblock, this%u, this%fint, load%free, this%mdof, &
                            this%u_mark, this%f_mark, this%partial)
       num = 0
       den = 0
@@ -447,27 +449,24 @@ contains
 
    !> Per block: sum of du_f kdu and of m du_f^2 with du_f = (u - u_mark) free; then u_mark = u,
    !> f_mark = f_int. Block sums are added in order by the caller (thread-independent bits).
-   subroutine rayleigh_blocks(nnode, nblock, u, fint, free, mass, u_mark, f_mark, partial)
-      integer, intent(in) :: nnode, nblock
-      real(wp), intent(in) :: u(2, nnode), fint(2, nnode), free(2, nnode), mass(nnode)
-      real(wp), intent(inout) :: u_mark(2, nnode), f_mark(2, nnode)
+   subroutine rayleigh_blocks(ndof, nblock, u, fint, free, mdof, u_mark, f_mark, partial)
+      integer, intent(in) :: ndof, nblock
+      real(wp), intent(in) :: u(ndof), fint(ndof), free(ndof), mdof(ndof)
+      real(wp), intent(inout) :: u_mark(ndof), f_mark(ndof)
       real(wp), intent(inout) :: partial(4, nblock)
       integer :: b, i
-      real(wp) :: dx, dy, num, den
-      !$omp parallel do schedule(static) private(i, dx, dy, num, den) if(nnode >= omp_min_nodes)
+      real(wp) :: du, num, den
+      !$omp parallel do schedule(static) private(i, du, num, den) if(ndof >= 2*omp_min_nodes)
       do b = 1, nblock
          num = 0
          den = 0
-         !$omp simd private(dx, dy) reduction(+:num, den)
-         do i = (b - 1)*block_size + 1, min(b*block_size, nnode)
-            dx = (u(1, i) - u_mark(1, i))*free(1, i)
-            dy = (u(2, i) - u_mark(2, i))*free(2, i)
-            num = num + (dx*f_mark(1, i) + dy*f_mark(2, i))
-            den = den + mass(i)*(dx*dx + dy*dy)
-            u_mark(1, i) = u(1, i)
-            u_mark(2, i) = u(2, i)
-            f_mark(1, i) = fint(1, i)
-            f_mark(2, i) = fint(2, i)
+         !$omp simd private(du) reduction(+:num, den)
+         do i = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
+            du = (u(i) - u_mark(i))*free(i)
+            num = num + du*f_mark(i)
+            den = den + mdof(i)*du*du
+            u_mark(i) = u(i)
+            f_mark(i) = fint(i)
          end do
          partial(1, b) = num
          partial(2, b) = den
