@@ -452,6 +452,12 @@ contains
             end if
             hist(:, iouter) = lim
             call law_limits(this, model, this%fn, this%mu, lim_new)
+            if (debug) then
+               do k = 1, this%nt
+                  if (lim_new(k) /= lim(k)) print '(a,i4,i5,4es12.4)', 'fp', iouter, k, lim(k), lim_new(k), &
+                     this%mu(this%cnode(this%nc + k)), this%fn(this%cnode(this%nc + k))
+               end do
+            end if
             scale = max(absmax(lim_new), absmax(lim), tiny(1.0_wp))
             ! Coulomb: once the sets repeat (or the limits have settled), the fixed point of the
             ! limits with these sets is one linear solve; it is the answer if the sets hold
