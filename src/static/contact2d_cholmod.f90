@@ -2,7 +2,7 @@
 !> once with its last `nlast` dofs eliminated last, solves with it, and the dense factor L22 of
 !> the Schur complement on those dofs (docs/static.md).
 module contact2d_cholmod
-   use, intrinsic :: iso_c_binding, only: c_int, c_long, c_double, c_ptr, c_null_ptr, c_associated
+   use, intrinsic :: iso_c_binding, only: c_int, c_long, c_double, c_ptr, c_null_ptr, c_associated, c_loc
    use contact2d_kinds, only: wp
    implicit none
    private
@@ -24,13 +24,14 @@ module contact2d_cholmod
    end type cholmod_t
 
    interface
-      integer(c_int) function c2d_chol_factor(n, nnz, ti, tj, tx, nlast, group, handle, pivot_ratio) &
+      integer(c_int) function c2d_chol_factor(n, nnz, ti, tj, tx, nlast, group, xy, handle, pivot_ratio) &
          bind(c, name='c2d_chol_factor')
          import :: c_int, c_long, c_double, c_ptr
          integer(c_int), value :: n, nlast
          integer(c_long), value :: nnz
          integer(c_int), intent(in) :: ti(*), tj(*), group(*)
          real(c_double), intent(in) :: tx(*)
+         type(c_ptr), value :: xy   !< 2 coordinates per dof, or null (METIS)
          type(c_ptr), intent(out) :: handle
          real(c_double), intent(out) :: pivot_ratio
       end function c2d_chol_factor
@@ -64,22 +65,28 @@ contains
 
    !> Factorise the n x n SPD matrix given by triplets (1-based, duplicates summed, either
    !> triangle). group(n): the mesh node of each dof (a node's dofs consecutive), for the
-   !> ordering. stat: 0 ok; 1 CHOLMOD failure; 2 not positive definite.
-   subroutine cholmod_factor(this, n, ti, tj, tx, nlast, group, stat, errmsg)
+   !> ordering of the leading block: nested dissection by coordinates when xy(2, n) (the
+   !> coordinates of each dof's node) is given, else METIS (docs/static.md "Ordering").
+   !> stat: 0 ok; 1 CHOLMOD failure; 2 not positive definite.
+   subroutine cholmod_factor(this, n, ti, tj, tx, nlast, group, stat, errmsg, xy)
       class(cholmod_t), intent(inout) :: this
       integer, intent(in) :: n, nlast
       integer, intent(in) :: ti(:), tj(:), group(:)
       real(wp), intent(in) :: tx(:)
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
+      real(c_double), intent(in), optional, target, contiguous :: xy(:, :)
       integer(c_int), allocatable :: i0(:), j0(:)
       real(c_double) :: ratio
+      type(c_ptr) :: pxy
       call this%free()
       allocate (i0(size(ti)), j0(size(tj)))
       i0(:) = int(ti - 1, c_int)
       j0(:) = int(tj - 1, c_int)
+      pxy = c_null_ptr
+      if (present(xy)) pxy = c_loc(xy)
       stat = c2d_chol_factor(int(n, c_int), int(size(tx), c_long), i0, j0, tx, int(nlast, c_int), &
-                             int(group, c_int), this%handle, ratio)
+                             int(group, c_int), pxy, this%handle, ratio)
       errmsg = ''
       select case (stat)
       case (0)

@@ -90,7 +90,7 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       integer :: k, c, i, n, nint, nnz, e, a, b, ia, ib, ncd
       integer, allocatable :: ti(:), tj(:)
-      real(wp), allocatable :: tx(:), l22(:, :)
+      real(wp), allocatable :: tx(:), l22(:, :), xy(:, :)
       integer, allocatable :: order(:), group(:)
       integer(i8) :: t0, t1, rate
       logical, allocatable :: is_contact(:)
@@ -209,7 +209,11 @@ contains
             if (this%dof(c, n) > 0) group(this%dof(c, n)) = n
          end do
       end do
-      call this%chol%factor(this%nfree, ti, tj, tx, this%ncdof, group, stat, errmsg)
+      allocate (xy(2, this%nfree))
+      do k = 1, this%nfree
+         xy(:, k) = model%mesh%x(:, group(k))
+      end do
+      call this%chol%factor(this%nfree, ti, tj, tx, this%ncdof, group, stat, errmsg, xy=xy)
       deallocate (ti, tj, tx)
       if (stat == 2 .or. (stat == 0 .and. this%chol%pivot_ratio < singular_pivot_ratio)) then
          stat = 1
@@ -350,7 +354,7 @@ contains
       real(wp), allocatable :: up(:, :), ku(:, :), f(:), x(:), y0(:), cvec(:), qn(:), psi_ref(:), lim(:), &
                                uprev(:, :), lim_new(:), hist(:, :), ysol(:), fn_last(:), mu_last(:)
       real(wp) :: cv(model%load%ncurve), scale
-      integer, allocatable :: state_prev(:)
+      integer, allocatable :: state_prev(:), state_first(:)
       integer :: p, n, c, i, r, iouter, nit, k, itry
       integer(i8) :: t0, t1, rate
       logical :: done, pdas_ok, ok_exact
@@ -439,7 +443,20 @@ contains
                this%iterations = this%iterations + nit
                if (stat /= 0) return
                if (pdas_ok) exit
+               if (itry == 1) state_first = this%state
             end do
+            if (.not. pdas_ok .and. this%coulomb) then
+               ! Coulomb: the Tresca subproblem's active-set iteration cycles; a semismooth Newton
+               ! iteration on the Coulomb problem itself, from the first try's sets
+               this%state = state_first
+               call coulomb_newton(this, model, cvec, nit, pdas_ok, stat, errmsg)
+               this%iterations = this%iterations + nit
+               if (stat /= 0) return
+               if (pdas_ok) then
+                  done = .true.
+                  exit
+               end if
+            end if
             if (.not. pdas_ok) then
                converged = .false.
                message = 'the active-set iteration cycled or did not settle in '//str(max_pdas)//' iterations'
@@ -492,39 +509,29 @@ contains
          end if
          if (.not. pdas_ok) call nodal_forces(this, model)
       end if
+      ! one solve: u = K^-1 (f + F_c). The condensed operator and this solve come from the same
+      ! factor, so the KKT residuals of u are at round-off level without refinement (docs/static.md
+      ! step 5: iterative refinement of u and of the multipliers changed u by at most 2.4e-11
+      ! relative at level 6 and did not lower the residuals)
       call displacement(this, model, f, up, stat)
       if (stat /= 0) then
          errmsg = 'CHOLMOD solve failed'
          return
-      end if
-      ! refine the multipliers of the fixed sets against the full solve (it removes the round-off
-      ! of the condensed operator): y_J(u) should vanish; d lambda_J = (A_JJ - A_JK A_KK^-1 A_KJ) y_J
-      if (this%m > 0 .and. converged) then
-         do k = 1, 2
-            call refine_multipliers(this, model, uprev, stat, errmsg)
-            if (stat /= 0) return
-            call nodal_forces(this, model)
-            call displacement(this, model, f, up, stat)
-            if (stat /= 0) then
-               errmsg = 'CHOLMOD solve failed'
-               return
-            end if
-         end do
       end if
       call kkt_residuals(this, model, uprev)
       call system_clock(t1)
       this%time_pdas = this%time_pdas + real(t1 - t0, wp)/rate
    end subroutine static_increment
 
-   !> u = K^-1 (f0 + contact forces) on the free dofs, up on the prescribed ones, with one step
-   !> of iterative refinement against the element-by-element K u; fc and fint follow.
+   !> u = K^-1 (f0 + contact forces) on the free dofs, up on the prescribed ones; fc and fint
+   !> (element by element) follow.
    subroutine displacement(this, model, f0, up, stat)
       type(static_t), intent(inout) :: this
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: f0(:), up(:, :)
       integer, intent(out) :: stat
       real(wp) :: f(this%nfree), x(this%nfree)
-      integer :: i, n, c, pass
+      integer :: i, n, c
       this%fc = 0
       do i = 1, this%nc
          n = model%contact%node(i)
@@ -535,93 +542,20 @@ contains
       end do
       this%u = up
       f = f0
-      do pass = 1, 2
-         if (pass == 2) then
-            ! the residual of the first pass: f_ext + F_c - K u on the free dofs
-            do n = 1, this%nnode
-               do c = 1, 2
-                  if (this%dof(c, n) > 0) f(this%dof(c, n)) = this%fext(c, n) + this%fc(c, n) - this%fint(c, n)
-               end do
-            end do
-         else
-            do n = 1, this%nnode
-               do c = 1, 2
-                  if (this%dof(c, n) > 0) f(this%dof(c, n)) = f(this%dof(c, n)) + this%fc(c, n)
-               end do
-            end do
-         end if
-         call this%chol%solve(f, x, stat)
-         if (stat /= 0) return
-         do n = 1, this%nnode
-            do c = 1, 2
-               if (this%dof(c, n) > 0) this%u(c, n) = this%u(c, n) + x(this%dof(c, n))
-            end do
+      do n = 1, this%nnode
+         do c = 1, 2
+            if (this%dof(c, n) > 0) f(this%dof(c, n)) = f(this%dof(c, n)) + this%fc(c, n)
          end do
-         call model%stiff%apply(this%u, this%fint)
       end do
+      call this%chol%solve(f, x, stat)
+      if (stat /= 0) return
+      do n = 1, this%nnode
+         do c = 1, 2
+            if (this%dof(c, n) > 0) this%u(c, n) = this%u(c, n) + x(this%dof(c, n))
+         end do
+      end do
+      call model%stiff%apply(this%u, this%fint)
    end subroutine displacement
-
-   !> lambda_J += (A_JJ - A_JK A_KK^-1 A_KJ) y_J(u) on the fixed-displacement set J (active
-   !> normal, stick), y measured on the full displacement u: one step of iterative refinement.
-   subroutine refine_multipliers(this, model, uprev, stat, errmsg)
-      type(static_t), intent(inout) :: this
-      type(model_t), intent(in) :: model
-      real(wp), intent(in) :: uprev(:, :)
-      integer, intent(out) :: stat
-      character(len=:), allocatable, intent(out) :: errmsg
-      real(wp) :: y(this%m), d(this%nc), dlam(this%m), dy(this%m)
-      real(wp), allocatable :: akk(:, :), z(:), e(:), dl(:)
-      integer, allocatable :: jset(:), kset(:)
-      integer :: i, r, nk, info
-      external :: dpotrf, dpotrs
-      stat = 0
-      errmsg = ''
-      do i = 1, this%nc
-         d(i) = dot_product(this%u(:, model%contact%node(i)), model%contact%normal(:, i)) - model%contact%gap(i)
-      end do
-      if (this%p0) then
-         call d_apply(model, d, y(1:this%nc))
-      else
-         y(1:this%nc) = d
-      end if
-      do r = this%nc + 1, this%m
-         i = model%contact%node(this%cnode(r))
-         y(r) = dot_product(this%u(:, i) - uprev(:, i), this%bdir(:, r))
-      end do
-      jset = pack([(r, r=1, this%m)], this%state == 1 .or. this%state == 3)
-      kset = pack([(r, r=1, this%m)], .not. (this%state == 1 .or. this%state == 3))
-      if (size(jset) == 0) return
-      e = y(jset)
-      if (this%coulomb) then
-         ! the slip forces follow the normal ones (mu F_n,i): the same correction on the fixed
-         ! sets, A d y + d lambda = A_J e with d y_J = -e, d lambda_slip = +-mu d F_n
-         allocate (z(this%m))
-         z = matmul(this%a(:, jset), e)
-         call coulomb_sets_solve(this, model, z, dlam, dy, info)
-         if (info /= 0) then
-            stat = 2
-            errmsg = 'LAPACK dgesv failed on the Coulomb fixed-set system (info = '//str(info)//')'
-            return
-         end if
-         this%lambda = this%lambda + dlam
-         return
-      end if
-      dl = matmul(this%a(jset, jset), e)
-      nk = size(kset)
-      if (nk > 0) then
-         akk = this%a(kset, kset)
-         z = matmul(this%a(kset, jset), e)
-         call dpotrf('L', nk, akk, nk, info)
-         if (info /= 0) then
-            stat = 2
-            errmsg = 'LAPACK dpotrf failed on the condensed contact matrix (info = '//str(info)//')'
-            return
-         end if
-         call dpotrs('L', nk, 1, akk, nk, z, nk, info)
-         dl = dl - matmul(this%a(jset, kset), z)
-      end if
-      this%lambda(jset) = this%lambda(jset) + dl
-   end subroutine refine_multipliers
 
    !> The friction law's limits (docs/friction.md section 2) of the tangential unknowns for the
    !> nodal normal forces fn and the P0 cell multipliers mu (the contact measure: fn for P1, mu
@@ -710,6 +644,54 @@ contains
          lam(r) = sign(1.0_wp, real(this%state(r), wp))*this%mu_coef(this%cnode(r))*fnode(this%cnode(r))
       end do
    end subroutine coulomb_sets_solve
+
+   !> Semismooth Newton (active-set) iteration on the Coulomb problem itself: with the current
+   !> sets, the exact fixed-set solution (coulomb_sets_solve), then the sets it implies with the
+   !> limits mu F_n of its own forces; until the sets repeat (ok: every condition holds) or an
+   !> earlier set comes back or max_pdas is reached (not ok; lambda unchanged).
+   subroutine coulomb_newton(this, model, cvec, nit, ok, stat, errmsg)
+      type(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: cvec(:)
+      integer, intent(out) :: nit
+      logical, intent(out) :: ok
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      real(wp) :: lam(this%m), y(this%m), fnode(this%nc), limk(this%nt)
+      integer :: new_state(this%m), info, it, j
+      integer, allocatable :: hist(:, :)
+      stat = 0
+      errmsg = ''
+      ok = .false.
+      nit = 0
+      allocate (hist(this%m, max_pdas))
+      do it = 1, max_pdas
+         nit = it
+         hist(:, it) = this%state
+         call coulomb_sets_solve(this, model, cvec, lam, y, info)
+         if (info /= 0) return
+         if (this%p0) then
+            call d_apply(model, lam(1:this%nc), fnode)
+            call law_limits(this, model, fnode, lam(1:this%nc), limk)
+         else
+            call law_limits(this, model, lam(1:this%nc), lam(1:this%nc), limk)
+         end if
+         call classify(this%a, this%nc, lam, y, limk, ct_tries(1), new_state)
+         if (debug) print '(a,i4,a,6i6)', 'ssn ', it, ' active/inactive/stick/slip+/slip-/free', &
+            count(new_state == 1), count(new_state == 0), count(new_state == 3), count(new_state == 2), &
+            count(new_state == -2), count(new_state == 4)
+         if (all(new_state == this%state)) then
+            ok = .true.
+            this%lambda = lam
+            call nodal_forces(this, model)
+            return
+         end if
+         do j = 1, it
+            if (all(new_state == hist(:, j))) return   ! cycling
+         end do
+         this%state = new_state
+      end do
+   end subroutine coulomb_newton
 
    !> The exact Coulomb solution for the current sets (coulomb_sets_solve on A (y - y0) +
    !> lambda = 0), kept (ok) only if the sets it implies are the same, the limits being
