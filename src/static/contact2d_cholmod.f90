@@ -2,11 +2,12 @@
 !> once with its last `nlast` dofs eliminated last, solves with it, and the dense factor L22 of
 !> the Schur complement on those dofs (docs/static.md).
 module contact2d_cholmod
-   use, intrinsic :: iso_c_binding, only: c_int, c_long, c_double, c_ptr, c_null_ptr, c_associated, c_loc
+   use, intrinsic :: iso_c_binding, only: c_int, c_long, c_double, c_ptr, c_null_ptr, c_associated, c_loc, &
+                                          c_char
    use contact2d_kinds, only: wp
    implicit none
    private
-   public :: cholmod_t
+   public :: cholmod_t, dense_lauum, dense_potrf, dense_potrs, dense_gesv
 
    !> A factorised matrix.
    type :: cholmod_t
@@ -59,6 +60,35 @@ module contact2d_cholmod
          import :: c_ptr
          type(c_ptr), intent(inout) :: handle
       end subroutine c2d_chol_free
+      ! dense LAPACK, dispatched by the shim (docs/static.md "BLAS")
+      subroutine dense_lauum(uplo, n, a, lda, info) bind(c, name='c2d_dlauum')
+         import :: c_int, c_double, c_char
+         character(kind=c_char), intent(in) :: uplo
+         integer(c_int), intent(in) :: n, lda
+         real(c_double), intent(inout) :: a(lda, *)
+         integer(c_int), intent(out) :: info
+      end subroutine dense_lauum
+      subroutine dense_potrf(uplo, n, a, lda, info) bind(c, name='c2d_dpotrf')
+         import :: c_int, c_double, c_char
+         character(kind=c_char), intent(in) :: uplo
+         integer(c_int), intent(in) :: n, lda
+         real(c_double), intent(inout) :: a(lda, *)
+         integer(c_int), intent(out) :: info
+      end subroutine dense_potrf
+      subroutine dense_potrs(uplo, n, nrhs, a, lda, b, ldb, info) bind(c, name='c2d_dpotrs')
+         import :: c_int, c_double, c_char
+         character(kind=c_char), intent(in) :: uplo
+         integer(c_int), intent(in) :: n, nrhs, lda, ldb
+         real(c_double), intent(in) :: a(lda, *)
+         real(c_double), intent(inout) :: b(ldb, *)
+         integer(c_int), intent(out) :: info
+      end subroutine dense_potrs
+      subroutine dense_gesv(n, nrhs, a, lda, ipiv, b, ldb, info) bind(c, name='c2d_dgesv')
+         import :: c_int, c_double
+         integer(c_int), intent(in) :: n, nrhs, lda, ldb
+         real(c_double), intent(inout) :: a(lda, *), b(ldb, *)
+         integer(c_int), intent(out) :: ipiv(*), info
+      end subroutine dense_gesv
    end interface
 
 contains

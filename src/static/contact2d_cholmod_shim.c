@@ -13,6 +13,8 @@
 #include <string.h>
 #include <math.h>
 #include <suitesparse/cholmod.h>
+#include <dlfcn.h>
+#include <stddef.h>
 
 /* OpenBLAS, when contact2d is linked against it (CMakeLists.txt, docs/static.md "BLAS"): weak, so
  * that the reference BLAS (no such symbol) links too. The factorisation runs on one BLAS thread:
@@ -414,4 +416,56 @@ void c2d_chol_free(void **handle)
     cholmod_finish(&h->common);
     free(h);
     *handle = NULL;
+}
+
+/* Dense LAPACK for the static engine's own calls (condensation, active-set solves), looked up in
+ * the process's global scope (dlsym RTLD_DEFAULT): with OpenBLAS linked (CMakeLists.txt,
+ * docs/static.md "BLAS") that is OpenBLAS, because the reference LAPACK/BLAS that the explicit
+ * engine uses is linked statically into the program and not exported; without OpenBLAS it is the
+ * system's liblapack.so.3. If the lookup fails, the routine linked into the program is called. */
+typedef void (*c2d_lauum_t)(const char *, const int *, double *, const int *, int *, size_t);
+typedef void (*c2d_potrf_t)(const char *, const int *, double *, const int *, int *, size_t);
+typedef void (*c2d_potrs_t)(const char *, const int *, const int *, const double *, const int *, double *,
+                            const int *, int *, size_t);
+typedef void (*c2d_gesv_t)(const int *, const int *, double *, const int *, int *, double *, const int *, int *);
+extern void dlauum_(const char *, const int *, double *, const int *, int *, size_t);
+extern void dpotrf_(const char *, const int *, double *, const int *, int *, size_t);
+extern void dpotrs_(const char *, const int *, const int *, const double *, const int *, double *, const int *,
+                    int *, size_t);
+extern void dgesv_(const int *, const int *, double *, const int *, int *, double *, const int *, int *);
+
+static void *c2d_lookup(const char *name, void *fallback)
+{
+    void *f = dlsym(RTLD_DEFAULT, name);
+    return f ? f : fallback;
+}
+
+void c2d_dlauum(const char *uplo, const int *n, double *a, const int *lda, int *info)
+{
+    static c2d_lauum_t f = NULL;
+    if (!f) f = (c2d_lauum_t)c2d_lookup("dlauum_", (void *)dlauum_);
+    f(uplo, n, a, lda, info, 1);
+}
+
+void c2d_dpotrf(const char *uplo, const int *n, double *a, const int *lda, int *info)
+{
+    static c2d_potrf_t f = NULL;
+    if (!f) f = (c2d_potrf_t)c2d_lookup("dpotrf_", (void *)dpotrf_);
+    f(uplo, n, a, lda, info, 1);
+}
+
+void c2d_dpotrs(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, double *b,
+                const int *ldb, int *info)
+{
+    static c2d_potrs_t f = NULL;
+    if (!f) f = (c2d_potrs_t)c2d_lookup("dpotrs_", (void *)dpotrs_);
+    f(uplo, n, nrhs, a, lda, b, ldb, info, 1);
+}
+
+void c2d_dgesv(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv, double *b, const int *ldb,
+               int *info)
+{
+    static c2d_gesv_t f = NULL;
+    if (!f) f = (c2d_gesv_t)c2d_lookup("dgesv_", (void *)dgesv_);
+    f(n, nrhs, a, lda, ipiv, b, ldb, info);
 }

@@ -19,7 +19,7 @@ module contact2d_static
    use contact2d_kinds, only: wp, i8
    use contact2d_strings, only: str
    use contact2d_model, only: model_t
-   use contact2d_cholmod, only: cholmod_t
+   use contact2d_cholmod, only: cholmod_t, dense_lauum, dense_potrf, dense_potrs, dense_gesv
    implicit none
    private
    public :: static_t, kkt_names, singular_pivot_ratio, pdas_solve, max_pdas
@@ -263,12 +263,12 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       real(wp), allocatable :: s(:, :), w(:, :), dd(:), dl(:), tr(:, :)
       integer :: nl, i, j, r, c, n, info
-      external :: dlauum, dpttrf, dpttrs
+      external :: dpttrf, dpttrs
 
       nl = this%ncdof
       ! U = J L22 J is upper triangular; U U^T = J L22 L22^T J
       l22 = l22(nl:1:-1, nl:1:-1)
-      call dlauum('U', nl, l22, nl, info)
+      call dense_lauum('U', nl, l22, nl, info)
       if (info /= 0) then
          stat = 2
          errmsg = 'LAPACK dlauum failed (info = '//str(info)//')'
@@ -596,7 +596,6 @@ contains
       real(wp) :: fnode(this%nc), sg, tij
       integer, allocatable :: ipiv(:)
       integer :: k, r, i, j, m, nc
-      external :: dgesv
       m = this%m
       nc = this%nc
       allocate (mat(m, m), z(m, 1), ipiv(m))
@@ -623,7 +622,7 @@ contains
          end do
       end do
       z(:, 1) = rhs
-      call dgesv(m, 1, mat, m, ipiv, z, m, info)
+      call dense_gesv(m, 1, mat, m, ipiv, z, m, info)
       y = 0
       lam = 0
       if (info /= 0) return
@@ -767,7 +766,6 @@ contains
       integer, allocatable :: hist(:, :), free_set(:), new_state(:)
       real(wp), allocatable :: akk(:, :), rhs(:)
       integer :: it, r, nk, info, j, m
-      external :: dpotrf, dpotrs
 
       stat = 0
       errmsg = ''
@@ -807,13 +805,13 @@ contains
          if (nk > 0) then
             akk = a(free_set, free_set)
             rhs = cvec(free_set) - lambda(free_set)
-            call dpotrf('L', nk, akk, nk, info)
+            call dense_potrf('L', nk, akk, nk, info)
             if (info /= 0) then
                stat = 2
                errmsg = 'LAPACK dpotrf failed on the condensed contact matrix (info = '//str(info)//')'
                return
             end if
-            call dpotrs('L', nk, 1, akk, nk, rhs, nk, info)
+            call dense_potrs('L', nk, 1, akk, nk, rhs, nk, info)
             y(free_set) = rhs
          end if
          ! lambda_J = cvec_J - A_JK y_K
