@@ -613,10 +613,13 @@ contains
          sg = sign(1.0_wp, real(this%state(r), wp))
          do j = max(i - 1, 1), min(i + 1, nc)
             if (this%state(j) /= 1) cycle
-            if (this%p0) then
-               tij = merge(model%contact%dd(i), model%contact%dl(min(i, j)), i == j)
+            if (i == j) then
+               tij = 1
+               if (this%p0) tij = model%contact%dd(i)
+            else if (this%p0) then
+               tij = model%contact%dl(min(i, j))
             else
-               tij = merge(1.0_wp, 0.0_wp, i == j)
+               tij = 0
             end if
             mat(r, j) = mat(r, j) + sg*this%mu_coef(i)*tij
          end do
