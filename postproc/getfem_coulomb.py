@@ -1,11 +1,16 @@
 #!/usr/bin/python3
 """GetFEM quasi-static Coulomb reference for a contact2d run (P1 multipliers), issue 11.
 
-    postproc/getfem_coulomb.py IN.h5 -o REF.h5 [--increments 20] [--tol 1e-12]
+    postproc/getfem_coulomb.py IN.h5 -o REF.h5 [--increments 20] [--tol 1e-12] [--side NAME=SIDE ...]
+                               [--from-snapshot TIME]
 
 IN.h5 is a contact2d output file of a deck with `contact:friction = 'coulomb'` and P1 multipliers.
 Its mesh, effective deck and contact boundary define the problem (read by getfem_reference.py's
 read_problem, so the same body, Dirichlet and traction data, obstacle, Gamma_c, n, t, g_i).
+Gamma_c may be curved (a Gmsh mesh, e.g. mindlin_cylinder) when the obstacle is a plane: every
+node then has the plane's normal and tangent (docs/geometry.md; /contact/normal is checked). A Gmsh
+deck's `boundary = 'name'` groups are mapped to bounding-box sides with --side name=side (the file
+holds no boundary names); every dof with a reaction in the run must then be prescribed here.
 Coulomb friction is path dependent, so the reference follows the deck's load path
 quasi-statically: the time axis of the load curves is cut at every stage end of every curve, each
 interval into --increments equal steps; at each step the static problem is solved with the loads
@@ -62,14 +67,14 @@ def curve_value(values, times, t):
     return out
 
 
-def load_path(prob):
+def load_path(prob, sides=None):
     """Dirichlet (node, comp) -> (values, times); traction list with (values, times); breakpoints."""
     deck, x = prob["deck"], prob["x"]
     solver = deck.get("solver", {})
     tol = 1.0e-9 * max(np.ptp(x[:, 0]), np.ptp(x[:, 1]))
     curves, breaks = {}, set()
     for g in deck["dirichlet"]:
-        nodes = gr.select_nodes(x, g.get("edge", ""), g, tol)
+        nodes = gr.select_nodes(x, gr.side_of(g, sides), g, tol)
         comp = {"x": 0, "y": 1}[str(g["component"]).lower()]
         vals = [float(v) for v in gr._as_list(g["values"])]
         tms = [float(v) for v in gr._as_list(g.get("times", solver.get("t_ramp", 1.0)))]
@@ -85,7 +90,9 @@ def load_path(prob):
     return curves, tractions, sorted(breaks)
 
 
-def solve(prob, mu_f, increments=20, tol=1e-12, max_iter=60, r_factor=1.0, noisy=False):
+def solve(prob, mu_f, increments=20, tol=1e-12, max_iter=60, r_factor=1.0, noisy=False, start=None):
+    """start: None (from the undeformed state at t = 0) or (t0, u0): follow the path from time t0,
+    with u0 (nnode, 2) as the previous state (the friction law's reference)."""
     import getfem as gf
     gf.util_trace_level(0)
     gf.util_warning_level(0)
@@ -116,7 +123,7 @@ def solve(prob, mu_f, increments=20, tol=1e-12, max_iter=60, r_factor=1.0, noisy
     md.add_initialized_data("lambda", [lam])
     md.add_initialized_data("mu", [mu])
     md.add_isotropic_linearized_elasticity_brick(mim, "u", "lambda", "mu")
-    curves, tractions, breaks = load_path(prob)
+    curves, tractions, breaks = load_path(prob, prob.get("sides"))
     keys = sorted(curves)
     if keys:
         B = gr._spmat(gf, len(keys), ndof, [(r, [dof[nd, cp]], [1.0]) for r, (nd, cp) in enumerate(keys)])
@@ -154,13 +161,17 @@ def solve(prob, mu_f, increments=20, tol=1e-12, max_iter=60, r_factor=1.0, noisy
 
     # time points: every breakpoint interval cut into `increments` equal steps
     tpts = []
-    prev = 0.0
+    prev = 0.0 if start is None else start[0]
     for b in breaks:
         if b <= prev:
             continue
         tpts += list(prev + (b - prev) * np.arange(1, increments + 1) / increments)
         prev = b
     u_prev = np.zeros(ndof)
+    if start is not None:
+        u_prev[dof[:, 0]] = start[1][:, 0]
+        u_prev[dof[:, 1]] = start[1][:, 1]
+        md.set_variable("u", u_prev)
     total_it, worst_kkt, history, reductions = 0, 0.0, [], 0
     ok = True
     for k, tk in enumerate(tpts):
@@ -229,6 +240,18 @@ def kkt_incremental(c, coef, uc, uc_prev, fn, ft, umax):
     return float(max(viol))
 
 
+def check_prescribed(path, prob):
+    """Every dof with a non-zero reaction in the run (/final/reaction is 0 off the prescribed dofs)
+    is prescribed here: a --side that selects too few nodes is refused."""
+    with h5py.File(path, "r") as f:
+        reaction = f["final/reaction"][()]
+    missed = (reaction != 0) & prob["free"]
+    if missed.any():
+        nd, cp = np.argwhere(missed)[0]
+        raise gr.Refused("node %d dof %s has a reaction in the run but is free here (check --side)"
+                         % (nd + 1, "xy"[cp]))
+
+
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("input")
@@ -237,9 +260,23 @@ def main(argv=None):
     p.add_argument("--tol", type=float, default=1e-12)
     p.add_argument("--max-iter", type=int, default=60)
     p.add_argument("--noisy", action="store_true")
+    p.add_argument("--from-snapshot", type=float, metavar="TIME",
+                   help="start from the run's /fields snapshot at TIME (the first at or after it): its time "
+                        "and displacement are the previous state of the first increment (a relaxed hold "
+                        "before it makes it an equilibrium)")
+    p.add_argument("--side", action="append", default=[], metavar="NAME=SIDE",
+                   help="a Gmsh mesh's &dirichlet / &traction boundary NAME is the bounding-box side SIDE "
+                        "(bottom, right, top, left); checked against the run's reactions")
     args = p.parse_args(argv)
     try:
-        prob = gr.read_problem(args.input, friction="frictionless")
+        sides = {}
+        for item in args.side:
+            name, _, side = item.partition("=")
+            if side not in gr.SIDES:
+                raise gr.Refused("--side %s: '%s' is not one of %s" % (item, side, ", ".join(gr.SIDES)))
+            sides[name] = side
+        prob = gr.read_problem(args.input, friction="frictionless", sides=sides, curved_plane=True)
+        check_prescribed(args.input, prob)
         c = prob["contact"]
         if c is None:
             raise gr.Refused("the run has no contact")
@@ -252,7 +289,18 @@ def main(argv=None):
     except gr.Refused as e:
         print("getfem_coulomb: refused: %s: %s" % (args.input, e), file=sys.stderr)
         return 2
-    info = solve(prob, mu_f, args.increments, args.tol, args.max_iter, noisy=args.noisy)
+    start = None
+    if args.from_snapshot is not None:
+        with h5py.File(args.input, "r") as f:
+            snaps = sorted(((float(g.attrs["time"]), g) for g in f["fields"].values() if float(g.attrs["time"])
+                            >= args.from_snapshot * (1 - 1e-9)), key=lambda s: s[0]) if "fields" in f else []
+            if not snaps:
+                print("getfem_coulomb: refused: %s: no /fields snapshot at or after t = %g"
+                      % (args.input, args.from_snapshot), file=sys.stderr)
+                return 2
+            start = (snaps[0][0], snaps[0][1]["displacement"][()])
+        print("getfem_coulomb: starting from the snapshot at t = %.9g s" % start[0])
+    info = solve(prob, mu_f, args.increments, args.tol, args.max_iter, noisy=args.noisy, start=start)
     c = prob["contact"]
     fn, ft, coef = info["fn"], info["ft"], info["coef"]
     info_ref = dict(u=info["u"], lambda_n=-fn, converged=info["converged"], iterations=info["iterations"],

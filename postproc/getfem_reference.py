@@ -101,8 +101,28 @@ def load_shape(group, solver):
     return (tuple(times), tuple(v / values[-1] for v in values))
 
 
-def read_problem(path, multiplier=None, friction=None):
-    """Everything the static problem needs, from a contact2d output file."""
+def side_of(group, sides=None):
+    """The bounding-box side a &dirichlet / &traction group selects: its `edge` (built-in mesh), or,
+    for a Gmsh mesh's `boundary = 'name'`, the side the caller says that boundary is (`sides`,
+    name -> side; the file holds no boundary names, so the caller vouches for it)."""
+    if g_edge(group):
+        return g_edge(group)
+    name = str(group.get("boundary", ""))
+    if sides and name in sides:
+        return sides[name]
+    raise Refused("boundary = '%s': a Gmsh boundary name; say which bounding-box side it is (sides)" % name)
+
+
+def g_edge(group):
+    return str(group.get("edge", ""))
+
+
+def read_problem(path, multiplier=None, friction=None, sides=None, curved_plane=False):
+    """Everything the static problem needs, from a contact2d output file.
+
+    sides: {boundary name: bounding-box side} for the &dirichlet / &traction groups of a Gmsh mesh
+    (side_of). curved_plane: accept a curved Gamma_c against a plane obstacle (every node then has
+    the plane's normal, as contact2d's docs/geometry.md says; /contact/normal is checked)."""
     with h5py.File(path, "r") as f:
         attrs = dict(f.attrs)
         if "effective_deck" not in attrs:
@@ -136,7 +156,7 @@ def read_problem(path, multiplier=None, friction=None):
     presc = {}
     shapes = []
     for k, g in enumerate(deck["dirichlet"], 1):
-        nodes = select_nodes(x, g.get("edge", ""), g, tol)
+        nodes = select_nodes(x, side_of(g, sides), g, tol)
         if nodes.size == 0:
             raise Refused("&dirichlet #%d selects no node" % k)
         comp = {"x": 0, "y": 1}.get(str(g.get("component", "")).lower())
@@ -154,7 +174,7 @@ def read_problem(path, multiplier=None, friction=None):
     # tractions: consistent nodal loads value * h/2 on the selected segments (SPEC 2)
     tractions = []
     for k, g in enumerate(deck["traction"], 1):
-        nodes = select_nodes(x, g.get("edge", ""), g, tol)
+        nodes = select_nodes(x, side_of(g, sides), g, tol)
         segs = select_segments(conn, nodes)
         if segs.shape[0] == 0:
             raise Refused("&traction #%d selects no element edge" % k)
@@ -172,7 +192,7 @@ def read_problem(path, multiplier=None, friction=None):
 
     prob = dict(path=path, attrs=attrs, deck=deck, text=text, x=x, conn=conn, nnode=nnode,
                 young=young, poisson=poisson, presc=presc, tractions=tractions, free=free,
-                proportional=proportional, copy=copy, contact=None)
+                proportional=proportional, copy=copy, contact=None, sides=sides)
     if not has_contact:
         if "contact" in deck:
             raise Refused("the deck has a &contact group but the file has no /contact/nodes")
@@ -210,7 +230,13 @@ def read_problem(path, multiplier=None, friction=None):
     for i in range(nc - 1):
         if tuple(sorted((int(nodes[i]), int(nodes[i + 1])))) not in segs:
             raise Refused("contact nodes %d and %d are not joined by an element edge" % (nodes[i] + 1, nodes[i + 1] + 1))
-    if np.abs((xc - xc[0]) @ np.array([-(xc[-1] - xc[0])[1], (xc[-1] - xc[0])[0]])).max() > tol * np.linalg.norm(xc[-1] - xc[0]):
+    if curved_plane:
+        if str(c.get("obstacle", "plane")).lower() != "plane":
+            raise Refused("obstacle '%s': only the plane is represented" % c.get("obstacle"))
+        fn_ = copy["contact"].get("normal")
+        if fn_ is None or np.abs(np.asarray(fn_, float).reshape(-1, 2) - n[None, :]).max() > 1e-12:
+            raise Refused("/contact/normal is not the plane's normal at every contact node")
+    elif np.abs((xc - xc[0]) @ np.array([-(xc[-1] - xc[0])[1], (xc[-1] - xc[0])[0]])).max() > tol * np.linalg.norm(xc[-1] - xc[0]):
         raise Refused("Gamma_c is not straight")
     w = np.zeros(nc)
     w[:-1] += h / 2

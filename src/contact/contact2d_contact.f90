@@ -459,7 +459,10 @@ contains
       integer, intent(in) :: i
       logical :: touching
       if (this%multiplier == multiplier_p0 .and. .not. this%penalty) then
-         touching = this%mu(i) > 0
+         ! Coulomb (mu > 0) acts on the nodal F_n,i = (D^T mu_n)_i, which a neighbouring closed
+         ! cell makes positive at a node whose own cell is open: such a node carries friction and
+         ! is reported touching (docs/friction.md section 1)
+         touching = this%mu(i) > 0 .or. (this%friction_coefficient > 0 .and. this%fn(i) > 0)
       else
          touching = this%fn(i) > 0
       end if
