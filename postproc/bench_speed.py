@@ -26,11 +26,16 @@ Issue 13 figures (each section can be chosen with --sections):
            two actively waiting threads (OMP_WAIT_POLICY=active, libgomp's default), interleaved, then stops the load and runs one and default
            again: the ratios default / one thread (target <= 1.3 under load) and one / default
            idle (target >= 1.9 at k = 5-6);
+  mass     mass scaling on the graded Hertz meshes (inputs/hertz_cylinder_p1.nml, hertz_indenter_p1.nml,
+           --mass-levels): steps and wall to the end state without and with solver:mass_scaling =
+           F x dt_critical (--mass-factors), frictionless (end state must not move) and Tresca
+           (--tresca-threshold; the path effect is reported), added mass, end-state difference;
   static   the built-in static engine (`contact2d DECK --static`) beside the explicit end state
            when the binary has it, else n/a;
-  general  (issue 10) the price of the general (Gmsh) path: ns per element-step on the Hertz Gmsh
-           mesh (inputs/hertz_indenter_p1.nml, level 1) against a structured mesh of the same
-           size, one thread, interleaved runs, medians.
+  general  the price of the general (Gmsh) path: ns per element-step on the Hertz Gmsh meshes
+           (inputs/hertz_cylinder_p1.nml, hertz_indenter_p1.nml, --general-levels) against a
+           structured mesh of the same size, one thread, interleaved runs, medians of the per-run
+           ratio (target <= 1.5); with --base-exe also the base binary on the Hertz meshes.
 """
 import argparse
 import json
@@ -47,6 +52,7 @@ from c2dh5 import Run  # noqa: E402
 from c2drun import ROOT, find_exe, run  # noqa: E402
 
 DECK = ROOT / "inputs" / "baillet_sassi_2002_p1.nml"
+HERTZ_DECKS = ("hertz_cylinder_p1.nml", "hertz_indenter_p1.nml")
 PYTHON = "/usr/bin/python3"
 
 
@@ -113,45 +119,60 @@ def getfem_time(src, out, level, friction, repeats):
     return statistics.median(walls), statistics.median(procs), None
 
 
-def general_path(exe, out, repeats, level=1):
+def general_path(exe, out, repeats, levels=(1,), base=None):
     """ns per element-step of the step loop (1 thread, fixed steps, medians of interleaved runs) on
-    the Hertz Gmsh mesh (inputs/hertz_indenter_p1.nml at `level`: general block-CSR path, one
-    matrix per element) and on a built-in structured mesh of about as many elements (the paper
-    deck with nx x ny set accordingly: structured stencil), and their ratio (issue 10)."""
-    hertz_deck = ROOT / "inputs" / "hertz_indenter_p1.nml"
+    the Hertz Gmsh meshes (inputs/hertz_cylinder_p1.nml and hertz_indenter_p1.nml at each level:
+    the general path, src/element/contact2d_rows.f90) and on a built-in structured mesh of about
+    as many elements (the paper deck with nx x ny set accordingly: the structured sweep), and
+    their ratio (issue 13 target: <= 1.5). With base, the Hertz runs are repeated with that
+    binary too (the previous commit), interleaved."""
     common = {"solver:t_end": 1.0, "solver:tol_residual": 1e-300, "solver:power_iterations": 0,
               "output:xdmf": False}
-    probe = out / "general_probe.h5"
-    if run(exe, hertz_deck, probe, {"mesh:level": level, "solver:max_steps": 1, **common}).returncode != 0:
-        sys.exit("general-path probe run failed")
-    with Run(probe) as r:
-        nel = int(r.attrs["element_count"])
-    probe.unlink()
-    ny = max(1, int(round(np.sqrt(nel * 3 / 13))))
-    nx = max(1, int(round(nel / ny)))
-    steps = max(200, int(3e8 / nel))
-    ns = {"gmsh": [], "structured": []}
-    for i in range(repeats):
-        for kind in ("gmsh", "structured"):
-            h5 = out / f"general_{kind}_{i}.h5"
-            if kind == "gmsh":
-                res = run(exe, hertz_deck, h5, {"mesh:level": level, "solver:max_steps": steps,
-                                                "output:history_interval": steps, **common}, threads=1)
-            else:
-                res = run(exe, DECK, h5, {"mesh:level": 0, "mesh:nx": nx, "mesh:ny": ny, "solver:max_steps": steps,
-                                          "output:history_interval": steps, **common}, threads=1)
-            if res.returncode != 0:
-                sys.exit(f"general-path run failed: {res.stderr}")
-            with Run(h5) as r:
-                ns[kind].append(1e9 * float(r.attrs["time_steps_seconds"])
-                                / (int(r.attrs["steps"]) * int(r.attrs["element_count"])))
-            h5.unlink()
-    g, s_ = statistics.median(ns["gmsh"]), statistics.median(ns["structured"])
-    print(f"\ngeneral path (issue 10), 1 thread, {steps} steps, median of {repeats}:")
-    print(f"  Hertz Gmsh mesh (level {level}, {nel} elements): {g:.2f} ns per element-step")
-    print(f"  structured {nx} x {ny} = {nx * ny} elements:        {s_:.2f} ns per element-step")
-    print(f"  ratio general / structured: {g / s_:.2f}")
-    return {"elements": nel, "ns_gmsh": g, "ns_structured": s_, "ratio": g / s_}
+    res = []
+    print(f"\n== general path: ns per element-step, 1 thread, median of {repeats} interleaved runs", flush=True)
+    for deck_name in HERTZ_DECKS:
+        hertz_deck = ROOT / "inputs" / deck_name
+        for level in levels:
+            probe = out / "general_probe.h5"
+            if run(exe, hertz_deck, probe, {"mesh:level": level, "solver:max_steps": 1, **common}).returncode != 0:
+                sys.exit("general-path probe run failed")
+            with Run(probe) as r:
+                nel = int(r.attrs["element_count"])
+            probe.unlink()
+            ny = max(1, int(round(np.sqrt(nel * 3 / 13))))
+            nx = max(1, int(round(nel / ny)))
+            steps = max(200, int(1e8 / nel))
+            kinds = ["gmsh", "structured"] + (["gmsh_base"] if base else [])
+            ns = {k: [] for k in kinds}
+            for i in range(repeats):
+                for kind in kinds:
+                    h5 = out / f"general_{kind}_{i}.h5"
+                    if kind.startswith("gmsh"):
+                        res_ = run(base if kind == "gmsh_base" else exe, hertz_deck, h5,
+                                   {"mesh:level": level, "solver:max_steps": steps,
+                                    "output:history_interval": steps, **common}, threads=1)
+                    else:
+                        res_ = run(exe, DECK, h5, {"mesh:level": 0, "mesh:nx": nx, "mesh:ny": ny,
+                                                   "solver:max_steps": steps, "output:history_interval": steps,
+                                                   **common}, threads=1)
+                    if res_.returncode != 0:
+                        sys.exit(f"general-path run failed: {res_.stderr}")
+                    with Run(h5) as r:
+                        ns[kind].append(1e9 * float(r.attrs["time_steps_seconds"])
+                                        / (int(r.attrs["steps"]) * int(r.attrs["element_count"])))
+                    h5.unlink()
+            g, s_ = statistics.median(ns["gmsh"]), statistics.median(ns["structured"])
+            ratio = statistics.median([a / b for a, b in zip(ns["gmsh"], ns["structured"])])
+            line = (f"  {deck_name} level {level} ({nel} elements, {steps} steps): {g:.2f} ns per element-step; "
+                    f"structured {nx} x {ny} = {nx * ny}: {s_:.2f}; ratio general / structured {ratio:.2f} "
+                    f"[{'PASS' if ratio <= 1.5 else 'MISS'} <= 1.5]")
+            if base:
+                gb = statistics.median(ns["gmsh_base"])
+                line += f"; base binary {gb:.2f} (base/new {statistics.median([b / a for a, b in zip(ns['gmsh'], ns['gmsh_base'])]):.2f}x)"
+            print(line, flush=True)
+            res.append({"deck": deck_name, "level": level, "elements": nel, "ns_gmsh": g, "ns_structured": s_,
+                        "ratio": ratio})
+    return res
 
 
 def timed(exe, level, sets=None, env_threads="1", extra_env=None, out=None, name="x"):
@@ -231,6 +252,58 @@ def section_steps(exe, out, levels, repeats, threads):
                   f"wall {statistics.median(walls):8.3f} s, max|du|/max|u| {du:.1e}{extra}", flush=True)
 
 
+
+def section_mass(exe, out, levels, factors, threads, tresca_threshold):
+    """Mass scaling on the graded Hertz meshes (issue 13): steps and wall to the end state without
+    and with solver:mass_scaling = F x dt_critical (the unscaled element bound), frictionless
+    (the end state is the unique static solution: it must not move beyond the tolerance) and a
+    Tresca variant (contact:threshold; the path enters through the slip: the difference is
+    reported, not judged). Prints max |u - u_0| / max |u_0| and the relative change of the total
+    normal force against the unscaled run, and the added mass as a fraction of the body mass."""
+    print("\n== mass scaling on the graded Hertz meshes: steps to the end state without and with "
+          "solver:mass_scaling = F x dt_critical", flush=True)
+    res = []
+    for deck_name in HERTZ_DECKS:
+        deck = ROOT / "inputs" / deck_name
+        for friction in ("frictionless", "tresca"):
+            fsets = {} if friction == "frictionless" else {"contact:friction": "tresca",
+                                                           "contact:threshold": tresca_threshold}
+            for k in levels:
+                def one(extra, name):
+                    h5 = out / f"mass_{name}.h5"
+                    r = run(exe, deck, h5, {"mesh:level": k, "output:xdmf": False, **fsets, **extra},
+                            threads=threads)
+                    if r.returncode != 0:
+                        sys.exit(f"mass-scaling run failed ({deck_name}, k={k}, {extra}): {r.stderr}")
+                    with Run(h5) as f:
+                        a = dict(f.attrs)
+                        u = np.array(f.file["final/displacement"][()])
+                        fn = float(np.sum(f.file["final/contact/normal_force"][()]))
+                    h5.unlink()
+                    if int(a["converged"]) != 1:
+                        sys.exit(f"mass-scaling run did not converge ({deck_name}, k={k}, {extra})")
+                    return a, u, fn
+                a0, u0, fn0 = one({}, "ref")
+                dtc = float(a0["dt_critical"])
+                s0 = int(a0["steps"])
+                print(f"  {deck_name} k={k} {friction} ({int(a0['element_count'])} elements): unscaled "
+                      f"{s0} steps, {float(a0['wall_seconds']):.2f} s", flush=True)
+                for fac in factors:
+                    a, u, fn = one({"solver:mass_scaling": fac * dtc}, "scaled")
+                    du = np.abs(u - u0).max() / np.abs(u0).max()
+                    dfn = abs(fn - fn0) / abs(fn0)
+                    ratio = s0 / int(a["steps"])
+                    added = float(a["added_mass"]) / float(a["body_mass"])
+                    print(f"     F={fac:<4g} {int(a['steps']):7d} steps ({ratio:.2f}x fewer"
+                          f"{'' if friction != 'frictionless' else (', PASS' if ratio >= 3 else ', MISS')} >= 3x), "
+                          f"{float(a['wall_seconds']):.2f} s, added mass {added:.3f} x body, "
+                          f"max|du|/max|u| {du:.1e}, |dF_n|/F_n {dfn:.1e}", flush=True)
+                    res.append({"deck": deck_name, "friction": friction, "level": k, "factor": fac,
+                                "steps_ref": s0, "steps": int(a["steps"]), "ratio": ratio, "added": added,
+                                "du": du, "dfn": dfn})
+    return res
+
+
 def section_threads(exe, out, levels, repeats):
     """The thread-robustness benchmark: a CPU-bound load on one core, started and stopped here."""
     print("\n== threads under load: a CPU-bound process occupies one core (started by this script)", flush=True)
@@ -290,8 +363,8 @@ def section_static(exe, out, levels, threads):
         else:
             line += ", static n/a (this binary has no --static)"
         print(line, flush=True)
-    print("  graded Hertz mesh (issue 10): ns per element-step on the general path in the 'general' section; "
-          "steps with/without mass scaling on it are not measured here yet", flush=True)
+    print("  graded Hertz mesh (issue 10): ns per element-step on the general path in the 'general' section, "
+          "steps with/without mass scaling on it in the 'mass' section", flush=True)
 
 
 def main():
@@ -301,10 +374,16 @@ def main():
     ap.add_argument("--repeats", type=int, default=7, help="runs per timing (median; default 7)")
     ap.add_argument("--out", default="study/bench", help="work directory")
     ap.add_argument("--no-getfem", action="store_true", help="skip the GetFEM reference")
-    ap.add_argument("--sections", default="issue5,base,steps,threads,static,general",
-                    help="comma list of issue5, base, steps, threads, static, general (default all)")
+    ap.add_argument("--sections", default="issue5,base,steps,mass,threads,static,general",
+                    help="comma list of issue5, base, steps, mass, threads, static, general (default all)")
     ap.add_argument("--base-exe", help="the previous commit's contact2d, for the base section")
     ap.add_argument("--thread-levels", default="5", help="levels of the threads section (default 5)")
+    ap.add_argument("--general-levels", default="1-2", help="Hertz mesh levels of the general section (default 1-2)")
+    ap.add_argument("--mass-levels", default="0-2", help="Hertz mesh levels of the mass section (default 0-2)")
+    ap.add_argument("--mass-factors", default="4",
+                    help="comma list of mass-scaling targets in units of dt_critical (default 4)")
+    ap.add_argument("--tresca-threshold", type=float, default=200.0,
+                    help="Tresca threshold [MPa] of the mass section's friction variant (default 200)")
     args = ap.parse_args()
     exe = find_exe(args.exe)
     out = Path(args.out)
@@ -315,12 +394,15 @@ def main():
         section_base(exe, args.base_exe, out, levels, args.repeats)
     if "steps" in sections:
         section_steps(exe, out, levels, max(1, args.repeats // 3), "1")
+    if "mass" in sections:
+        section_mass(exe, out, parse_levels(args.mass_levels), [float(x) for x in args.mass_factors.split(",")],
+                     "1", args.tresca_threshold)
     if "threads" in sections:
         section_threads(exe, out, parse_levels(args.thread_levels), args.repeats)
     if "static" in sections:
         section_static(exe, out, levels, "1")
     if "general" in sections:
-        general_path(exe, out, args.repeats)
+        general_path(exe, out, args.repeats, parse_levels(args.general_levels), args.base_exe)
     if "issue5" not in sections:
         return
 

@@ -16,6 +16,7 @@ module contact2d_explicit
    use contact2d_contact, only: contact_t
    use contact2d_sys, only: sys_signal_pending
    use contact2d_sweep, only: sweep_stencils, sweep_parts, sweep_step
+   use contact2d_rows, only: rows_t
    implicit none
    private
    public :: explicit_t, damping_none, damping_given, damping_auto
@@ -52,6 +53,7 @@ module contact2d_explicit
       real(wp) :: alpha_prev = 0           !< damping of the last step (pending corrector)
       real(wp) :: stencils(2, 2, -1:1, -1:1, 3, 3) = 0   !< structured-mesh stencils (sweep)
       real(wp), allocatable :: rowsum(:, :)  !< per-row sums of the sweep (3, sweep_parts)
+      type(rows_t) :: rows                 !< block rows of a general mesh (contact2d_rows)
       real(wp), allocatable :: fint(:, :)  !< K u^n of the last step [N]
       real(wp), allocatable :: fext(:, :)  !< f_ext(t_n) of the last step [N]
       real(wp), allocatable :: fc(:, :)    !< contact force on the body of the last step [N]
@@ -118,7 +120,13 @@ contains
                 this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode), this%uold(2, nnode))
       this%u = 0; this%v = 0; this%unew = 0; this%fint = 0; this%fext = 0; this%fc = 0; this%uold = 0
       if (stiff%structured) call sweep_stencils(stiff%ke(:, :, 1), this%stencils)
-      allocate (this%rowsum(4, sweep_parts(stiff)))
+      if (stiff%structured) then
+         allocate (this%rowsum(4, sweep_parts(stiff)))
+      else
+         ! general meshes: the block rows in the layout of contact2d_rows
+         call this%rows%init(stiff)
+         allocate (this%rowsum(4, this%rows%parts()))
+      end if
       this%mass = stiff%mass
       this%minv = 1/stiff%mass
       this%mdof = reshape(spread(stiff%mass, 1, 2), [2*nnode])
@@ -162,8 +170,13 @@ contains
          a2inv = 1/(1 + 0.5_wp*this%alpha*dt)
          c = dt*dt*a2inv
          ! one sweep: the corrector of the last step (if pending), K u^n and the predictor
-         call sweep_step(stiff, this%stencils, this%u, this%uold, this%v, this%fint, this%minv, this%mass, &
-                         this%mdof, this%minvdof, dt*a2inv*a1, c, 1/dt, this%pending, this%unew, this%rowsum)
+         if (stiff%structured) then
+            call sweep_step(stiff, this%stencils, this%u, this%uold, this%v, this%fint, this%minv, this%mass, &
+                            this%mdof, this%minvdof, dt*a2inv*a1, c, 1/dt, this%pending, this%unew, this%rowsum)
+         else
+            call this%rows%sweep(this%u, this%uold, this%v, this%fint, this%mdof, this%minvdof, dt*a2inv*a1, c, &
+                            1/dt, this%pending, this%unew, this%rowsum)
+         end if
          if (this%pending) call add_energies(this, this%rowsum, this%alpha_prev, dt)
          ! automatic damping: a new alpha from (u^n, K u^n), used from the next step on
          if (this%damping == damping_auto) then

@@ -1,0 +1,204 @@
+!> One sweep over memory per explicit step on a general (Gmsh) mesh (issue 13,
+!> docs/performance.md "general path"): chunk by chunk of block rows, the corrector of the
+!> previous step (velocities and the kinetic, damping, strain and alternating energy sums), the
+!> internal force K u^n from the block rows of contact2d_stiffness, and the predictor of this
+!> step, while the chunk is in cache.
+!>
+!> The rows of a general mesh are all its nodes in node order (stiffness_init builds them so:
+!> row r is node r), so the per-node state is addressed directly and, inside a chunk, as flat
+!> arrays of interleaved (x, y) dofs: the corrector and the predictor are plain vector loops
+!> with per-dof masses.
+!>
+!> Rows are stored with a fixed width of ell_width = 9 blocks (a node of a regular quad mesh has
+!> 9 neighbours, itself included; 94 % of the rows of the refined Hertz meshes): a shorter row is
+!> padded with zero blocks on its own node, the blocks of a longer row beyond the ninth go to a
+!> small CSR remainder, added after the chunk's fixed-width pass. So the product of a row is straight-line code with no loop and no
+!> data-dependent branch: three accumulators of three blocks each (short dependency chains),
+!> each block B (four consecutive values, column-major) times u(col) as two 2-wide FMAs on
+!> (b11, b21) ux and (b12, b22) uy. The order of every sum is fixed by the layout, and chunks are
+!> fixed (chunk_rows rows) with their partial sums added in chunk order by the caller, so the
+!> bits do not depend on the number of threads or on which thread does which chunk.
+module contact2d_rows
+   use contact2d_kinds, only: wp, i8
+   use contact2d_stiffness, only: stiffness_t, omp_min_nodes
+   implicit none
+   private
+   public :: rows_t
+
+   !> Blocks per row of the fixed-width part.
+   integer, parameter :: ell_width = 9
+   !> Block rows per chunk (and per partial sum): the chunk's state (about 15 arrays of
+   !> 2 x 256 doubles) stays in the first-level cache between the three loops.
+   integer, parameter :: chunk_rows = 256
+
+   !> The block rows of K of a general mesh (row r is node r), laid out for the sweep.
+   type :: rows_t
+      integer :: nnode = 0
+      integer(i8), allocatable :: col(:, :)     !< flat offset 2 (m - 1) of the column node m (ell_width, nnode)
+      real(wp), allocatable :: blk(:, :, :)     !< (b11, b21, b12, b22) of each block (4, ell_width, nnode) [N/mm]
+      integer, allocatable :: xstart(:)         !< remainder: first extra block of each row (nnode + 1)
+      integer(i8), allocatable :: xcol(:)       !< remainder: flat column offsets
+      integer, allocatable :: xrow(:)           !< remainder: row of each extra block
+      real(wp), allocatable :: xblk(:, :)       !< remainder: blocks (4, nextra) [N/mm]
+   contains
+      procedure :: init => rows_init
+      procedure :: parts => rows_parts
+      procedure :: sweep => rows_sweep
+   end type rows_t
+
+contains
+
+   !> Set-up: the block rows of a general mesh (stiff%row_start, blk_col, blk; row r is node r)
+   !> in the layout of the sweep, blocks in the order of stiff (increasing column node).
+   subroutine rows_init(this, stiff)
+      class(rows_t), intent(out) :: this
+      type(stiffness_t), intent(in) :: stiff
+      integer :: r, k, i, nx
+      this%nnode = stiff%nnode
+      allocate (this%col(ell_width, this%nnode), this%blk(4, ell_width, this%nnode), this%xstart(this%nnode + 1))
+      nx = 0
+      do r = 1, this%nnode
+         nx = nx + max(0, stiff%row_start(r + 1) - stiff%row_start(r) - ell_width)
+      end do
+      allocate (this%xcol(nx), this%xrow(nx), this%xblk(4, nx))
+      nx = 0
+      do r = 1, this%nnode
+         this%xstart(r) = nx + 1
+         ! padding: zero blocks on the row's own node (adds exact zeros)
+         this%col(:, r) = 2*(int(r, i8) - 1)
+         this%blk(:, :, r) = 0
+         do k = stiff%row_start(r), stiff%row_start(r + 1) - 1
+            i = k - stiff%row_start(r) + 1
+            if (i <= ell_width) then
+               this%col(i, r) = 2*(int(stiff%blk_col(k), i8) - 1)
+               this%blk(:, i, r) = reshape(stiff%blk(:, :, k), [4])
+            else
+               nx = nx + 1
+               this%xcol(nx) = 2*(int(stiff%blk_col(k), i8) - 1)
+               this%xrow(nx) = r
+               this%xblk(:, nx) = reshape(stiff%blk(:, :, k), [4])
+            end if
+         end do
+      end do
+      this%xstart(this%nnode + 1) = nx + 1
+   end subroutine rows_init
+
+   !> Number of partial sums (chunks of block rows) of rows_sweep.
+   pure integer function rows_parts(this) result(n)
+      class(rows_t), intent(in) :: this
+      n = (this%nnode + chunk_rows - 1)/chunk_rows
+   end function rows_parts
+
+   !> One sweep on a general mesh: if pending, first the corrector of the previous step at each
+   !> node of a chunk,
+   !>    v = (u - uold)/dt,  partial = (sum m v^2, sum m ((v + v_old)/2)^2, sum u . f_old,
+   !>    sum m (v - v_old)^2);
+   !> then f = K u and w = u + c1 v - c2 M^-1 f on the chunk.
+   subroutine rows_sweep(this, u, uold, v, f, mdof, minvdof, c1, c2, rdt, pending, w, partial)
+      class(rows_t), intent(in) :: this
+      real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
+      real(wp), intent(in) :: uold(:, :)    !< u^(n-1) (used if pending) [mm]
+      real(wp), intent(inout) :: v(:, :)    !< v^(n-3/2) in, v^(n-1/2) out if pending [mm/s]
+      real(wp), intent(inout) :: f(:, :)    !< K u^(n-1) in, K u^n out [N]
+      real(wp), intent(in) :: mdof(:), minvdof(:)   !< mass and 1/mass per dof (2 nnode)
+      real(wp), intent(in) :: c1, c2, rdt
+      logical, intent(in) :: pending
+      real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
+      real(wp), intent(inout) :: partial(:, :)   !< (4, rows_parts)
+      call sweep_chunks(this%nnode, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, this%xrow, this%xblk, &
+                        u, uold, v, f, mdof, minvdof, c1, c2, rdt, pending, w, partial, &
+                        this%nnode >= omp_min_nodes)
+   end subroutine rows_sweep
+
+   !> The chunks, shared among threads (explicit-shape arrays: unit strides known to the compiler).
+   subroutine sweep_chunks(nnode, nx, col, blk, xstart, xcol, xrow, xblk, u, uold, v, f, mdof, minvdof, c1, c2, rdt, &
+                           pending, w, partial, par)
+      integer, intent(in) :: nnode, nx
+      integer(i8), intent(in) :: col(ell_width, nnode), xcol(nx)
+      real(wp), intent(in) :: blk(4, ell_width, nnode), xblk(4, nx)
+      integer, intent(in) :: xstart(nnode + 1), xrow(nx)
+      real(wp), intent(in) :: u(2*nnode), uold(2*nnode), mdof(2*nnode), minvdof(2*nnode), c1, c2, rdt
+      real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode)
+      logical, intent(in) :: pending, par
+      real(wp), intent(inout) :: partial(4, *)
+      integer :: c, r0, r1
+      !$omp parallel do schedule(dynamic) if(par) private(r0, r1)
+      do c = 1, (nnode + chunk_rows - 1)/chunk_rows
+         r0 = (c - 1)*chunk_rows + 1
+         r1 = min(c*chunk_rows, nnode)
+         call chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, u, uold, v, f, mdof, minvdof, c1, c2, rdt, &
+                    pending, w, partial(:, c))
+      end do
+      !$omp end parallel do
+   end subroutine sweep_chunks
+
+   !> Rows r0 .. r1: corrector (flat dofs 2 r0 - 1 .. 2 r1), products, predictor.
+   subroutine chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, u, uold, v, f, mdof, minvdof, c1, c2, rdt, &
+                    pending, w, part)
+      integer, intent(in) :: nnode, nx, r0, r1
+      integer(i8), intent(in) :: col(ell_width, nnode), xcol(nx)
+      real(wp), intent(in) :: blk(4, ell_width, nnode), xblk(4, nx)
+      integer, intent(in) :: xstart(nnode + 1), xrow(nx)
+      real(wp), intent(in) :: u(2*nnode), uold(2*nnode), mdof(2*nnode), minvdof(2*nnode), c1, c2, rdt
+      real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode)
+      logical, intent(in) :: pending
+      real(wp), intent(out) :: part(4)
+      integer :: d, r, i, k
+      integer(i8) :: j
+      real(wp) :: vn, ek, ed, es, ea, p1, p2, p3, p4, q1, q2, q3, q4, s1, s2, s3, s4
+      ek = 0
+      ed = 0
+      es = 0
+      ea = 0
+      if (pending) then
+         ! reads f (K u^(n-1)) before the products below overwrite it
+         !$omp simd private(vn) reduction(+:ek, ed, es, ea)
+         do d = 2*r0 - 1, 2*r1
+            vn = (u(d) - uold(d))*rdt
+            ek = ek + mdof(d)*vn*vn
+            ed = ed + mdof(d)*(0.5_wp*(vn + v(d)))**2
+            es = es + u(d)*f(d)
+            ea = ea + mdof(d)*(vn - v(d))**2
+            v(d) = vn
+         end do
+      end if
+      part = [ek, ed, es, ea]
+      do r = r0, r1
+         ! blocks 1, 4, 7 into p; 2, 5, 8 into q; 3, 6, 9 into s (ell_width = 9)
+         p1 = 0; p2 = 0; p3 = 0; p4 = 0
+         q1 = 0; q2 = 0; q3 = 0; q4 = 0
+         s1 = 0; s2 = 0; s3 = 0; s4 = 0
+         !GCC$ novector
+         do i = 1, ell_width, 3
+            j = col(i, r)
+            p1 = p1 + blk(1, i, r)*u(j + 1)
+            p2 = p2 + blk(2, i, r)*u(j + 1)
+            p3 = p3 + blk(3, i, r)*u(j + 2)
+            p4 = p4 + blk(4, i, r)*u(j + 2)
+            j = col(i + 1, r)
+            q1 = q1 + blk(1, i + 1, r)*u(j + 1)
+            q2 = q2 + blk(2, i + 1, r)*u(j + 1)
+            q3 = q3 + blk(3, i + 1, r)*u(j + 2)
+            q4 = q4 + blk(4, i + 1, r)*u(j + 2)
+            j = col(i + 2, r)
+            s1 = s1 + blk(1, i + 2, r)*u(j + 1)
+            s2 = s2 + blk(2, i + 2, r)*u(j + 1)
+            s3 = s3 + blk(3, i + 2, r)*u(j + 2)
+            s4 = s4 + blk(4, i + 2, r)*u(j + 2)
+         end do
+         f(2*r - 1) = ((p1 + q1) + s1) + ((p3 + q3) + s3)
+         f(2*r) = ((p2 + q2) + s2) + ((p4 + q4) + s4)
+      end do
+      ! the blocks of rows longer than ell_width beyond the ninth (rare), added in order
+      do k = xstart(r0), xstart(r1 + 1) - 1
+         r = xrow(k)
+         j = xcol(k)
+         f(2*r - 1) = f(2*r - 1) + (xblk(1, k)*u(j + 1) + xblk(3, k)*u(j + 2))
+         f(2*r) = f(2*r) + (xblk(2, k)*u(j + 1) + xblk(4, k)*u(j + 2))
+      end do
+      !$omp simd
+      do d = 2*r0 - 1, 2*r1
+         w(d) = u(d) + c1*v(d) - c2*minvdof(d)*f(d)
+      end do
+   end subroutine chunk
+end module contact2d_rows
