@@ -12,11 +12,17 @@ For each mesh level k (13 2^k x 3 2^k elements), on one thread (OMP_NUM_THREADS=
      residual 1e-8), median of --explicit-repeats runs, interleaved with the static runs so that
      both see the same machine load, and the ratio explicit / static;
   3. the issue-14 targets: static solve within 2x of 0.43 s (level 5) and 1.9 s (level 6), PASS/MISS.
-Timings are wall-clock on a possibly shared machine: medians, ratios of things measured side by side.
+Timings are wall-clock on a possibly shared machine: medians, ratios of things measured side by side;
+the CPU time of the whole static run (user + system, from the child's resource usage) is printed
+beside them, as it is less sensitive to the machine's load, with the load average before and after
+and the BLAS the executable loads (ldd: OpenBLAS or the system's libblas.so.3, docs/static.md "BLAS").
 postproc/bench_speed.py can call static_times() for its own tables.
 """
 import argparse
+import os
+import resource
 import statistics
+import subprocess
 import sys
 from pathlib import Path
 
@@ -35,14 +41,28 @@ def parse_levels(text):
 def static_times(exe, deck, out, level):
     """One static run: (solve seconds, wall seconds, factor, condense, increments seconds)."""
     h5 = out / f"static_k{level}.h5"
+    cpu0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     res = run(exe, deck, h5, {"mesh:level": level, "solver:method": "static", "output:xdmf": False}, threads=1)
+    cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     if res.returncode != 0:
         sys.exit(f"static run failed (level {level}): {res.stderr.strip()}")
     with Run(h5) as r:
         parts = [float(r.attrs[k]) for k in ("time_factor_seconds", "time_condense_seconds", "time_solve_seconds")]
         wall = float(r.attrs["wall_seconds"])
     h5.unlink()
-    return sum(parts), wall, *parts
+    cpu = (cpu1.ru_utime - cpu0.ru_utime) + (cpu1.ru_stime - cpu0.ru_stime)
+    return sum(parts), wall, *parts, cpu
+
+
+def blas_of(exe):
+    """The BLAS library the executable loads (from ldd), for the header line."""
+    try:
+        text = subprocess.run(["ldd", exe], capture_output=True, text=True, timeout=30).stdout
+    except (OSError, subprocess.SubprocessError):
+        return "unknown (ldd failed)"
+    libs = [line.split("=>")[1].split("(")[0].strip() for line in text.splitlines()
+            if "=>" in line and ("blas" in line.lower())]
+    return ", ".join(libs) if libs else "none found by ldd"
 
 
 def explicit_time(exe, deck, out, level):
@@ -73,8 +93,10 @@ def main():
 
     print(f"static engine benchmark, paper scene {args.multiplier} Tresca, one thread; "
           f"medians of {args.repeats} static / {args.explicit_repeats} explicit run(s)")
+    print(f"executable {exe}; BLAS libraries loaded: {blas_of(exe)}")
+    print("load average before: %.2f %.2f %.2f (%d cores)" % (*os.getloadavg(), os.cpu_count() or 0))
     header = (f"{'level':>5} {'elements':>9} {'static s':>9} {'(factor':>8} {'condense':>9} {'solve)':>8} "
-              f"{'wall s':>8} {'explicit s':>11} {'steps':>8} {'expl/static':>12}")
+              f"{'wall s':>8} {'cpu s':>7} {'explicit s':>11} {'steps':>8} {'expl/static':>12}")
     print(header)
     rows = {}
     for level in parse_levels(args.levels):
@@ -84,13 +106,14 @@ def main():
                 st.append(static_times(exe, deck, out, level))
             if i < args.explicit_repeats:
                 ex.append(explicit_time(exe, deck, out, level))
-        med = [statistics.median(x[j] for x in st) for j in range(5)]
+        med = [statistics.median(x[j] for x in st) for j in range(6)]
         ewall = statistics.median(e[0] for e in ex) if ex else float("nan")
         esteps = ex[0][1] if ex else 0
         rows[level] = med[0]
         print(f"{level:>5} {39 * 4**level:>9} {med[0]:>9.3f} {med[2]:>8.3f} {med[3]:>9.3f} {med[4]:>8.3f} "
-              f"{med[1]:>8.3f} {ewall:>11.3f} {esteps:>8} {ewall / med[0]:>12.1f}")
+              f"{med[1]:>8.3f} {med[5]:>7.3f} {ewall:>11.3f} {esteps:>8} {ewall / med[0]:>12.1f}")
         sys.stdout.flush()
+    print("load average after:  %.2f %.2f %.2f" % os.getloadavg())
     for level, ref in TARGETS.items():
         if level in rows:
             verdict = "PASS" if rows[level] <= 2 * ref else "MISS"

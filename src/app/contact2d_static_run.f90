@@ -117,6 +117,14 @@ contains
                c%fn = st%fn
                c%ft = st%ft
                c%mu = st%mu
+               ! the limits of these forces, for the statuses (stick / slip), as the explicit step sets them
+               if (c%friction) then
+                  if (st%p0) then
+                     call c%law%limits(c%fn, c%mu, c%slip_limit)
+                  else
+                     call c%law%limits(c%fn, c%fn, c%slip_limit)
+                  end if
+               end if
                do i = 1, st%nc
                   d(i) = dot_product(st%u(:, c%node(i)), c%normal(:, i)) - c%gap(i)
                end do
@@ -254,9 +262,8 @@ contains
       call st%free()
    end subroutine static_distance
 
-   !> The friction laws the static engine solves: frictionless and Tresca (docs/static.md).
-   !> Another law (Coulomb, when it lands) is refused rather than solved as something else;
-   !> decks with an initial velocity (dynamic by nature) are to be refused here too.
+   !> The friction laws the static engine solves: frictionless, Tresca and Coulomb
+   !> (docs/static.md). Another law is refused rather than solved as something else.
    subroutine supported(deck, stat, errmsg)
       type(deck_t), intent(in) :: deck
       integer, intent(out) :: stat
@@ -264,9 +271,9 @@ contains
       stat = 0
       errmsg = ''
       if (.not. deck%contact%present) return
-      if (.not. any(trim(deck%contact%friction) == [character(len=12) :: 'frictionless', 'tresca'])) then
+      if (.not. any(trim(deck%contact%friction) == [character(len=12) :: 'frictionless', 'tresca', 'coulomb'])) then
          stat = 1
-         errmsg = "the static engine solves frictionless and Tresca contact only; contact:friction = '"// &
+         errmsg = "the static engine solves frictionless, Tresca and Coulomb contact only; contact:friction = '"// &
                   trim(deck%contact%friction)//"' is not supported with solver:method = 'static' or compare_static"
       end if
    end subroutine supported

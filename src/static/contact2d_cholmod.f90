@@ -2,11 +2,12 @@
 !> once with its last `nlast` dofs eliminated last, solves with it, and the dense factor L22 of
 !> the Schur complement on those dofs (docs/static.md).
 module contact2d_cholmod
-   use, intrinsic :: iso_c_binding, only: c_int, c_long, c_double, c_ptr, c_null_ptr, c_associated
+   use, intrinsic :: iso_c_binding, only: c_int, c_long, c_double, c_ptr, c_null_ptr, c_associated, c_loc, &
+                                          c_char
    use contact2d_kinds, only: wp
    implicit none
    private
-   public :: cholmod_t
+   public :: cholmod_t, dense_lauum, dense_potrf, dense_potrs, dense_gesv
 
    !> A factorised matrix.
    type :: cholmod_t
@@ -24,13 +25,14 @@ module contact2d_cholmod
    end type cholmod_t
 
    interface
-      integer(c_int) function c2d_chol_factor(n, nnz, ti, tj, tx, nlast, group, handle, pivot_ratio) &
+      integer(c_int) function c2d_chol_factor(n, nnz, ti, tj, tx, nlast, group, xy, handle, pivot_ratio) &
          bind(c, name='c2d_chol_factor')
          import :: c_int, c_long, c_double, c_ptr
          integer(c_int), value :: n, nlast
          integer(c_long), value :: nnz
          integer(c_int), intent(in) :: ti(*), tj(*), group(*)
          real(c_double), intent(in) :: tx(*)
+         type(c_ptr), value :: xy   !< 2 coordinates per dof, or null (METIS)
          type(c_ptr), intent(out) :: handle
          real(c_double), intent(out) :: pivot_ratio
       end function c2d_chol_factor
@@ -58,28 +60,63 @@ module contact2d_cholmod
          import :: c_ptr
          type(c_ptr), intent(inout) :: handle
       end subroutine c2d_chol_free
+      ! dense LAPACK, dispatched by the shim (docs/static.md "BLAS")
+      subroutine dense_lauum(uplo, n, a, lda, info) bind(c, name='c2d_dlauum')
+         import :: c_int, c_double, c_char
+         character(kind=c_char), intent(in) :: uplo
+         integer(c_int), intent(in) :: n, lda
+         real(c_double), intent(inout) :: a(lda, *)
+         integer(c_int), intent(out) :: info
+      end subroutine dense_lauum
+      subroutine dense_potrf(uplo, n, a, lda, info) bind(c, name='c2d_dpotrf')
+         import :: c_int, c_double, c_char
+         character(kind=c_char), intent(in) :: uplo
+         integer(c_int), intent(in) :: n, lda
+         real(c_double), intent(inout) :: a(lda, *)
+         integer(c_int), intent(out) :: info
+      end subroutine dense_potrf
+      subroutine dense_potrs(uplo, n, nrhs, a, lda, b, ldb, info) bind(c, name='c2d_dpotrs')
+         import :: c_int, c_double, c_char
+         character(kind=c_char), intent(in) :: uplo
+         integer(c_int), intent(in) :: n, nrhs, lda, ldb
+         real(c_double), intent(in) :: a(lda, *)
+         real(c_double), intent(inout) :: b(ldb, *)
+         integer(c_int), intent(out) :: info
+      end subroutine dense_potrs
+      subroutine dense_gesv(n, nrhs, a, lda, ipiv, b, ldb, info) bind(c, name='c2d_dgesv')
+         import :: c_int, c_double
+         integer(c_int), intent(in) :: n, nrhs, lda, ldb
+         real(c_double), intent(inout) :: a(lda, *), b(ldb, *)
+         integer(c_int), intent(out) :: ipiv(*), info
+      end subroutine dense_gesv
    end interface
 
 contains
 
    !> Factorise the n x n SPD matrix given by triplets (1-based, duplicates summed, either
    !> triangle). group(n): the mesh node of each dof (a node's dofs consecutive), for the
-   !> ordering. stat: 0 ok; 1 CHOLMOD failure; 2 not positive definite.
-   subroutine cholmod_factor(this, n, ti, tj, tx, nlast, group, stat, errmsg)
+   !> ordering of the leading block: nested dissection by coordinates when xy(2, n) (the
+   !> coordinates of each dof's node) is given, else METIS (docs/static.md "Ordering").
+   !> stat: 0 ok; 1 CHOLMOD failure; 2 not positive definite.
+   subroutine cholmod_factor(this, n, ti, tj, tx, nlast, group, stat, errmsg, xy)
       class(cholmod_t), intent(inout) :: this
       integer, intent(in) :: n, nlast
       integer, intent(in) :: ti(:), tj(:), group(:)
       real(wp), intent(in) :: tx(:)
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
+      real(c_double), intent(in), optional, target, contiguous :: xy(:, :)
       integer(c_int), allocatable :: i0(:), j0(:)
       real(c_double) :: ratio
+      type(c_ptr) :: pxy
       call this%free()
       allocate (i0(size(ti)), j0(size(tj)))
       i0(:) = int(ti - 1, c_int)
       j0(:) = int(tj - 1, c_int)
+      pxy = c_null_ptr
+      if (present(xy)) pxy = c_loc(xy)
       stat = c2d_chol_factor(int(n, c_int), int(size(tx), c_long), i0, j0, tx, int(nlast, c_int), &
-                             int(group, c_int), this%handle, ratio)
+                             int(group, c_int), pxy, this%handle, ratio)
       errmsg = ''
       select case (stat)
       case (0)

@@ -4,14 +4,17 @@
  *
  * The matrix is symmetric positive definite, given as lower-triangle triplets (0-based, duplicates
  * summed). Its last `nlast` rows and columns (the contact dofs) are kept last in the elimination
- * order: the leading block is ordered by METIS on its node graph (AMD if METIS fails), the
- * trailing block follows in its given order, no postordering. The supernodal factor L = [L11 0; L21 L22] then holds in L22
+ * order: the leading block is ordered on its node graph, by nested dissection on the node
+ * coordinates when they are given, else by METIS (AMD if METIS fails); the trailing block follows
+ * in its given order, no postordering. The supernodal factor L = [L11 0; L21 L22] then holds in L22
  * the Cholesky factor of the Schur complement S = K22 - K21 K11^-1 K12 (S = L22 L22^T).
  */
 #include <stdlib.h>
 #include <string.h>
 #include <math.h>
 #include <suitesparse/cholmod.h>
+#include <dlfcn.h>
+#include <stddef.h>
 
 /* OpenBLAS, when contact2d is linked against it (CMakeLists.txt, docs/static.md "BLAS"): weak, so
  * that the reference BLAS (no such symbol) links too. The factorisation runs on one BLAS thread:
@@ -25,13 +28,144 @@ typedef struct {
     int nlast;
 } c2d_chol_t;
 
+/* Nested dissection by coordinates (docs/static.md "Ordering"): split a set of groups at the median
+ * of its longer coordinate extent (groups with the same coordinate on one side, so that on a
+ * structured mesh the cut is one grid line), take as separator the groups of the lower side that
+ * have a neighbour on the upper side, order the two sides recursively, the separator last.
+ * Pieces of at most ND_LEAF groups keep their order. adjp/adji: the group graph (CSR, both
+ * directions); xy: 2 coordinates per group; out: the group order. O(n log n) (a quickselect per
+ * piece). Returns 1 on success. */
+#define ND_LEAF 16
+/* The k-th smallest key[s[.]] of s[0..len-1] (quickselect, median-of-three pivot; s is permuted). */
+static double nd_select(int *s, int len, int k, const double *key)
+{
+    int lo = 0, hi = len - 1;
+    while (hi > lo) {
+        int mid = lo + (hi - lo) / 2, i = lo, j = hi;
+        double a = key[s[lo]], b = key[s[mid]], c = key[s[hi]];
+        double pivot = a < b ? (b < c ? b : (a < c ? c : a)) : (a < c ? a : (b < c ? c : b));
+        while (i <= j) {
+            while (key[s[i]] < pivot) i++;
+            while (key[s[j]] > pivot) j--;
+            if (i <= j) {
+                int t = s[i]; s[i] = s[j]; s[j] = t;
+                i++; j--;
+            }
+        }
+        if (k <= j) hi = j;
+        else if (k >= i) lo = i;
+        else break;
+    }
+    return key[s[k]];
+}
+
+static int nd_order(int ng, const int *adjp, const int *adji, const double *xy, int *out)
+{
+    /* an explicit stack of (start, length, stage) ranges of the work array `set`; a range is
+     * first split (stage 0), its separator saved at its end, then emitted after its children */
+    int *set = malloc(sizeof(int) * (ng > 0 ? ng : 1)), *side = malloc(sizeof(int) * (ng > 0 ? ng : 1));
+    int *stack = malloc(sizeof(int) * 3 * (2 * ng + 8)), *tmp = malloc(sizeof(int) * (ng > 0 ? ng : 1));
+    double *key = malloc(sizeof(double) * (ng > 0 ? ng : 1));
+    int sp = 0, nout = 0, k, ok = 0;
+    if (!set || !side || !stack || !tmp || !key) goto out;
+    for (k = 0; k < ng; k++) {
+        set[k] = k;
+        side[k] = -1;
+    }
+    if (ng > 0) {
+        stack[sp++] = 0; stack[sp++] = ng; stack[sp++] = 0;
+    }
+    while (sp > 0) {
+        int stage = stack[--sp], len = stack[--sp], start = stack[--sp];
+        int *s = set + start, i, cut, nlow, nsep, nhigh;
+        double xmin, xmax, ymin, ymax;
+        if (stage == 1) {
+            /* children done: emit the separator, kept at the end of the range */
+            int nsep1 = len;
+            for (i = 0; i < nsep1; i++) out[nout++] = s[i];
+            continue;
+        }
+        if (len <= ND_LEAF) {
+            for (i = 0; i < len; i++) out[nout++] = s[i];
+            continue;
+        }
+        xmin = xmax = xy[2 * s[0]];
+        ymin = ymax = xy[2 * s[0] + 1];
+        for (i = 1; i < len; i++) {
+            double x = xy[2 * s[i]], y = xy[2 * s[i] + 1];
+            if (x < xmin) xmin = x;
+            if (x > xmax) xmax = x;
+            if (y < ymin) ymin = y;
+            if (y > ymax) ymax = y;
+        }
+        {
+            int axis = (xmax - xmin >= ymax - ymin) ? 0 : 1;
+            for (i = 0; i < len; i++) key[s[i]] = xy[2 * s[i] + axis];
+        }
+        /* the median coordinate (quickselect), then three-way: below | equal | above it */
+        {
+            double m = nd_select(s, len, len / 2, key);
+            int lt = 0, gt = len, q = 0;
+            while (q < gt) {
+                double kq = key[s[q]];
+                if (kq < m) {
+                    int t = s[q]; s[q] = s[lt]; s[lt] = t;
+                    lt++; q++;
+                } else if (kq > m) {
+                    int t = s[q]; s[q] = s[--gt]; s[gt] = t;
+                } else {
+                    q++;
+                }
+            }
+            /* lower side: below and equal (one grid line stays whole), unless nothing is above */
+            cut = gt < len ? gt - 1 : lt - 1;
+        }
+        for (i = 0; i < len; i++) side[s[i]] = i <= cut ? 0 : 1;
+        /* separator: lower-side groups with an upper-side neighbour (within this range) */
+        nlow = nsep = 0;
+        for (i = 0; i <= cut; i++) {
+            int g = s[i], p, is_sep = 0;
+            for (p = adjp[g]; p < adjp[g + 1]; p++)
+                if (side[adji[p]] == 1) {
+                    is_sep = 1;
+                    break;
+                }
+            if (is_sep) tmp[len - 1 - nsep++] = g;   /* separators fill tmp from the end */
+            else tmp[nlow++] = g;
+        }
+        nhigh = len - 1 - cut;
+        for (i = 0; i < nhigh; i++) tmp[nlow + i] = s[cut + 1 + i];
+        /* tmp = [low | high | separator (reversed)] */
+        for (i = 0; i < len; i++) {
+            side[s[i]] = -1;
+        }
+        memcpy(s, tmp, sizeof(int) * len);
+        /* the separator is emitted after both children: push it first (stage 1), then the children */
+        stack[sp++] = start + nlow + nhigh; stack[sp++] = nsep; stack[sp++] = 1;
+        stack[sp++] = start + nlow; stack[sp++] = nhigh; stack[sp++] = 0;
+        stack[sp++] = start; stack[sp++] = nlow; stack[sp++] = 0;
+    }
+    ok = nout == ng;
+out:
+    free(set);
+    free(side);
+    free(stack);
+    free(tmp);
+    free(key);
+    return ok;
+}
+
 /* Order the leading block on the graph of its groups (the mesh nodes: their dofs are consecutive
  * and share one group id), which is 2x smaller with 4x fewer edges than the dof graph and keeps
- * each node's dofs together. perm11 gets the dof permutation. Returns 1 on success. */
+ * each node's dofs together. With coordinates (xy: 2 per dof), nested dissection by coordinates
+ * (nd_order); without, METIS (AMD if METIS fails). perm11 gets the dof permutation. Returns 1 on
+ * success. */
 static int order_groups(int nfirst, long nnz, const int *ti, const int *tj, const int *group,
-                        int *perm11, cholmod_common *c)
+                        const double *xy, int *perm11, cholmod_common *c)
 {
-    int *gid = malloc(sizeof(int) * nfirst), *gstart = malloc(sizeof(int) * (nfirst + 1)), *gperm = NULL;
+    int *gid = malloc(sizeof(int) * (nfirst > 0 ? nfirst : 1)), *gstart = malloc(sizeof(int) * (nfirst + 1));
+    int *gperm = NULL, *adjp = NULL, *adji = NULL, *fill = NULL;
+    double *gxy = NULL;
     int ng = 0, k, ok = 0;
     long m = 0, e;
     cholmod_triplet *T = NULL;
@@ -42,28 +176,61 @@ static int order_groups(int nfirst, long nnz, const int *ti, const int *tj, cons
         gid[k] = ng - 1;
     }
     gstart[ng] = nfirst;
-    for (e = 0; e < nnz; e++)
-        if (ti[e] < nfirst && tj[e] < nfirst && gid[ti[e]] != gid[tj[e]]) m++;
-    T = cholmod_allocate_triplet(ng, ng, m > 0 ? m : 1, -1, CHOLMOD_PATTERN, c);
-    if (!T) goto out;
-    m = 0;
-    for (e = 0; e < nnz; e++) {
-        if (ti[e] < nfirst && tj[e] < nfirst) {
-            int a = gid[ti[e]], b = gid[tj[e]];
-            if (a == b) continue;
-            ((int *)T->i)[m] = a > b ? a : b;
-            ((int *)T->j)[m] = a > b ? b : a;
-            m++;
-        }
-    }
-    T->nnz = m;
-    G = cholmod_triplet_to_sparse(T, m, c);
     gperm = malloc(sizeof(int) * (ng > 0 ? ng : 1));
-    if (!G || !gperm) goto out;
-    ok = cholmod_metis(G, NULL, 0, 1, gperm, c);
-    if (!ok) {
-        c->status = CHOLMOD_OK;
-        ok = cholmod_amd(G, NULL, 0, gperm, c);
+    if (!gperm) goto out;
+    if (xy) {
+        /* the group graph in both directions from the entries between the first dofs of two
+         * groups (one per group pair and element; repeats are harmless) */
+        adjp = calloc(ng + 1, sizeof(int));
+        fill = malloc(sizeof(int) * (ng > 0 ? ng : 1));
+        gxy = malloc(sizeof(double) * 2 * (ng > 0 ? ng : 1));
+        if (!adjp || !fill || !gxy) goto out;
+        for (e = 0; e < nnz; e++) {
+            int a = ti[e], b = tj[e];
+            if (a < nfirst && b < nfirst && a == gstart[gid[a]] && b == gstart[gid[b]] && gid[a] != gid[b]) {
+                adjp[gid[a] + 1]++;
+                adjp[gid[b] + 1]++;
+            }
+        }
+        for (k = 0; k < ng; k++) adjp[k + 1] += adjp[k];
+        adji = malloc(sizeof(int) * (adjp[ng] > 0 ? adjp[ng] : 1));
+        if (!adji) goto out;
+        memcpy(fill, adjp, sizeof(int) * ng);
+        for (e = 0; e < nnz; e++) {
+            int a = ti[e], b = tj[e];
+            if (a < nfirst && b < nfirst && a == gstart[gid[a]] && b == gstart[gid[b]] && gid[a] != gid[b]) {
+                adji[fill[gid[a]]++] = gid[b];
+                adji[fill[gid[b]]++] = gid[a];
+            }
+        }
+        for (k = 0; k < ng; k++) {
+            gxy[2 * k] = xy[2 * gstart[k]];
+            gxy[2 * k + 1] = xy[2 * gstart[k] + 1];
+        }
+        ok = nd_order(ng, adjp, adji, gxy, gperm);
+    } else {
+        for (e = 0; e < nnz; e++)
+            if (ti[e] < nfirst && tj[e] < nfirst && gid[ti[e]] != gid[tj[e]]) m++;
+        T = cholmod_allocate_triplet(ng, ng, m > 0 ? m : 1, -1, CHOLMOD_PATTERN, c);
+        if (!T) goto out;
+        m = 0;
+        for (e = 0; e < nnz; e++) {
+            if (ti[e] < nfirst && tj[e] < nfirst) {
+                int a = gid[ti[e]], b = gid[tj[e]];
+                if (a == b) continue;
+                ((int *)T->i)[m] = a > b ? a : b;
+                ((int *)T->j)[m] = a > b ? b : a;
+                m++;
+            }
+        }
+        T->nnz = m;
+        G = cholmod_triplet_to_sparse(T, m, c);
+        if (!G) goto out;
+        ok = cholmod_metis(G, NULL, 0, 1, gperm, c);
+        if (!ok) {
+            c->status = CHOLMOD_OK;
+            ok = cholmod_amd(G, NULL, 0, gperm, c);
+        }
     }
     if (ok) {
         int p = 0, q;
@@ -74,6 +241,10 @@ out:
     free(gid);
     free(gstart);
     free(gperm);
+    free(adjp);
+    free(adji);
+    free(fill);
+    free(gxy);
     if (T) cholmod_free_triplet(&T, c);
     if (G) cholmod_free_sparse(&G, c);
     return ok;
@@ -83,7 +254,7 @@ out:
  * positive definite (CHOLMOD found a non-positive pivot). pivot_ratio: min_j L_jj^2 / K_jj over
  * all columns (a rigid-body mode shows as a ratio near machine epsilon). */
 int c2d_chol_factor(int n, long nnz, const int *ti, const int *tj, const double *tx, int nlast,
-                    const int *group, void **handle, double *pivot_ratio)
+                    const int *group, const double *xy, void **handle, double *pivot_ratio)
 {
     c2d_chol_t *h = calloc(1, sizeof(c2d_chol_t));
     cholmod_triplet *T = NULL;
@@ -119,7 +290,7 @@ int c2d_chol_factor(int n, long nnz, const int *ti, const int *tj, const double 
     perm = malloc(sizeof(int) * (n > 0 ? n : 1));
     if (!perm) goto done;
     if (nfirst > 0) {
-        if (!order_groups(nfirst, nnz, ti, tj, group, perm, &h->common)) goto done;
+        if (!order_groups(nfirst, nnz, ti, tj, group, xy, perm, &h->common)) goto done;
     }
     for (k = 0; k < nlast; k++) perm[nfirst + k] = nfirst + (int)k;
     h->common.nmethods = 1;
@@ -245,4 +416,56 @@ void c2d_chol_free(void **handle)
     cholmod_finish(&h->common);
     free(h);
     *handle = NULL;
+}
+
+/* Dense LAPACK for the static engine's own calls (condensation, active-set solves), looked up in
+ * the process's global scope (dlsym RTLD_DEFAULT): with OpenBLAS linked (CMakeLists.txt,
+ * docs/static.md "BLAS") that is OpenBLAS, because the reference LAPACK/BLAS that the explicit
+ * engine uses is linked statically into the program and not exported; without OpenBLAS it is the
+ * system's liblapack.so.3. If the lookup fails, the routine linked into the program is called. */
+typedef void (*c2d_lauum_t)(const char *, const int *, double *, const int *, int *, size_t);
+typedef void (*c2d_potrf_t)(const char *, const int *, double *, const int *, int *, size_t);
+typedef void (*c2d_potrs_t)(const char *, const int *, const int *, const double *, const int *, double *,
+                            const int *, int *, size_t);
+typedef void (*c2d_gesv_t)(const int *, const int *, double *, const int *, int *, double *, const int *, int *);
+extern void dlauum_(const char *, const int *, double *, const int *, int *, size_t);
+extern void dpotrf_(const char *, const int *, double *, const int *, int *, size_t);
+extern void dpotrs_(const char *, const int *, const int *, const double *, const int *, double *, const int *,
+                    int *, size_t);
+extern void dgesv_(const int *, const int *, double *, const int *, int *, double *, const int *, int *);
+
+static void *c2d_lookup(const char *name, void *fallback)
+{
+    void *f = dlsym(RTLD_DEFAULT, name);
+    return f ? f : fallback;
+}
+
+void c2d_dlauum(const char *uplo, const int *n, double *a, const int *lda, int *info)
+{
+    static c2d_lauum_t f = NULL;
+    if (!f) f = (c2d_lauum_t)c2d_lookup("dlauum_", (void *)dlauum_);
+    f(uplo, n, a, lda, info, 1);
+}
+
+void c2d_dpotrf(const char *uplo, const int *n, double *a, const int *lda, int *info)
+{
+    static c2d_potrf_t f = NULL;
+    if (!f) f = (c2d_potrf_t)c2d_lookup("dpotrf_", (void *)dpotrf_);
+    f(uplo, n, a, lda, info, 1);
+}
+
+void c2d_dpotrs(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, double *b,
+                const int *ldb, int *info)
+{
+    static c2d_potrs_t f = NULL;
+    if (!f) f = (c2d_potrs_t)c2d_lookup("dpotrs_", (void *)dpotrs_);
+    f(uplo, n, nrhs, a, lda, b, ldb, info, 1);
+}
+
+void c2d_dgesv(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv, double *b, const int *ldb,
+               int *info)
+{
+    static c2d_gesv_t f = NULL;
+    if (!f) f = (c2d_gesv_t)c2d_lookup("dgesv_", (void *)dgesv_);
+    f(n, nrhs, a, lda, ipiv, b, ldb, info);
 }

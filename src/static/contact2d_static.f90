@@ -19,10 +19,10 @@ module contact2d_static
    use contact2d_kinds, only: wp, i8
    use contact2d_strings, only: str
    use contact2d_model, only: model_t
-   use contact2d_cholmod, only: cholmod_t
+   use contact2d_cholmod, only: cholmod_t, dense_lauum, dense_potrf, dense_potrs, dense_gesv
    implicit none
    private
-   public :: static_t, kkt_names, singular_pivot_ratio
+   public :: static_t, kkt_names, singular_pivot_ratio, pdas_solve, max_pdas
 
    !> KKT residual names (summary and HDF5 attributes kkt_<name>), all relative.
    character(len=24), parameter :: kkt_names(4) = [character(len=24) :: &
@@ -33,6 +33,8 @@ module contact2d_static
    integer, parameter :: node_of(8) = [1, 1, 2, 2, 3, 3, 4, 4], comp_of(8) = [1, 2, 1, 2, 1, 2, 1, 2]
    !> PDAS and fixed-point iteration limits.
    integer, parameter :: max_pdas = 200, max_outer = 50
+   !> The friction limits of two passes of the fixed point agree to this (relative to the largest).
+   real(wp), parameter :: fp_tol = 1.0e-12_wp
    logical, parameter :: debug = .false.
    !> Tangential complementarity constants tried in turn (fractions of A_rr): with 1, the slip
    !> signs of the paper scene flip-flop from level 4 on; 0.1 settles in 9-14 iterations (levels 0-6).
@@ -48,6 +50,9 @@ module contact2d_static
       integer :: m = 0                     !< nc + nt
       logical :: p0 = .false.
       logical :: scope_contact = .false.   !< tresca_scope = 'contact'
+      logical :: coulomb = .false.         !< Coulomb friction (limits mu F_n,i)
+      logical :: law_fp = .false.          !< limits depend on the forces: fixed point (Coulomb, scope)
+      real(wp), allocatable :: mu_coef(:)  !< Coulomb mu_i per contact node (0 if not Coulomb)
       integer, allocatable :: dof(:, :)    !< free-dof index of (component, node), 0 if prescribed
       integer, allocatable :: cnode(:)     !< contact index of each unknown (m)
       real(wp), allocatable :: bdir(:, :)  !< unknown direction (n or t) (2, m)
@@ -85,7 +90,7 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       integer :: k, c, i, n, nint, nnz, e, a, b, ia, ib, ncd
       integer, allocatable :: ti(:), tj(:)
-      real(wp), allocatable :: tx(:), l22(:, :)
+      real(wp), allocatable :: tx(:), l22(:, :), xy(:, :)
       integer, allocatable :: order(:), group(:)
       integer(i8) :: t0, t1, rate
       logical, allocatable :: is_contact(:)
@@ -122,6 +127,10 @@ contains
             this%nc = ct%nc
             this%p0 = ct%multiplier_name() == 'P0'
             this%scope_contact = ct%friction_in_contact_only
+            if (ct%friction) then
+               this%coulomb = ct%law%name() == 'coulomb'
+               this%law_fp = this%coulomb .or. this%scope_contact
+            end if
             do i = 1, ct%nc
                n = ct%node(i)
                do c = 1, 2
@@ -133,6 +142,9 @@ contains
                if (all(free(:, n) > 0)) this%nt = this%nt + 1
             end do
          end if
+         allocate (this%mu_coef(this%nc))
+         this%mu_coef = 0
+         if (this%coulomb) this%mu_coef = merge(ct%friction_coefficient, 0.0_wp, ct%slides)
          this%ncdof = ncd
          this%nfree = nint + ncd
          this%m = this%nc + this%nt
@@ -197,7 +209,11 @@ contains
             if (this%dof(c, n) > 0) group(this%dof(c, n)) = n
          end do
       end do
-      call this%chol%factor(this%nfree, ti, tj, tx, this%ncdof, group, stat, errmsg)
+      allocate (xy(2, this%nfree))
+      do k = 1, this%nfree
+         xy(:, k) = model%mesh%x(:, group(k))
+      end do
+      call this%chol%factor(this%nfree, ti, tj, tx, this%ncdof, group, stat, errmsg, xy=xy)
       deallocate (ti, tj, tx)
       if (stat == 2 .or. (stat == 0 .and. this%chol%pivot_ratio < singular_pivot_ratio)) then
          stat = 1
@@ -247,12 +263,12 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       real(wp), allocatable :: s(:, :), w(:, :), dd(:), dl(:), tr(:, :)
       integer :: nl, i, j, r, c, n, info
-      external :: dlauum, dpttrf, dpttrs
+      external :: dpttrf, dpttrs
 
       nl = this%ncdof
       ! U = J L22 J is upper triangular; U U^T = J L22 L22^T J
       l22 = l22(nl:1:-1, nl:1:-1)
-      call dlauum('U', nl, l22, nl, info)
+      call dense_lauum('U', nl, l22, nl, info)
       if (info /= 0) then
          stat = 2
          errmsg = 'LAPACK dlauum failed (info = '//str(info)//')'
@@ -336,12 +352,12 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       real(wp), allocatable :: up(:, :), ku(:, :), f(:), x(:), y0(:), cvec(:), qn(:), psi_ref(:), lim(:), &
-                               uprev(:, :)
-      real(wp) :: cv(model%load%ncurve)
-      integer, allocatable :: mask(:, :)
+                               uprev(:, :), lim_new(:), hist(:, :), ysol(:), fn_last(:), mu_last(:)
+      real(wp) :: cv(model%load%ncurve), scale
+      integer, allocatable :: state_prev(:), state_first(:)
       integer :: p, n, c, i, r, iouter, nit, k, itry
       integer(i8) :: t0, t1, rate
-      logical :: done, pdas_ok
+      logical :: done, pdas_ok, ok_exact
 
       call system_clock(t0, rate)
       stat = 0
@@ -375,11 +391,14 @@ contains
          return
       end if
 
+      fn_last = this%fn
+      mu_last = this%mu
       this%fn = 0
       this%ft = 0
       this%mu = 0
       this%fc = 0
       if (this%m > 0) then
+         allocate (ysol(this%m))
          ! y0 = (T (q0_n - g), q0_t - psi_ref)
          allocate (y0(this%m), qn(this%nc), psi_ref(this%nt))
          do r = 1, this%m
@@ -401,9 +420,17 @@ contains
          y0(this%nc + 1:) = y0(this%nc + 1:) - psi_ref
          allocate (cvec(this%m))
          cvec = matmul(this%a, y0)
-         ! thresholds; with tresca_scope = 'contact' a fixed point on them
-         allocate (lim(this%nt), mask(this%nt, max_outer))
-         lim = this%limit
+         ! thresholds: Tresca's s_i w_i; with Coulomb (mu F_n,i) or tresca_scope = 'contact' (none
+         ! where the node is out of contact) they depend on the contact forces: a fixed point on
+         ! them (docs/static.md "Coulomb friction and tresca_scope = 'contact'")
+         allocate (lim(this%nt), lim_new(this%nt), hist(this%nt, max_outer), state_prev(this%m))
+         if (this%coulomb) then
+            ! warm start: the limits of the last increment's forces (none at the first)
+            call law_limits(this, model, fn_last, mu_last, lim)
+         else
+            lim = this%limit
+         end if
+         state_prev = -99
          done = .false.
          do iouter = 1, max_outer
             this%outer_iterations = this%outer_iterations + 1
@@ -411,81 +438,100 @@ contains
             ! tangential constant (docs/static.md)
             do itry = 1, size(ct_tries)
                if (itry > 1) this%state = -99
-               call pdas(this, cvec, lim, ct_tries(itry), nit, pdas_ok, stat, errmsg)
+               call pdas_solve(this%a, this%nc, cvec, lim, ct_tries(itry), max_pdas, this%state, this%lambda, &
+                               ysol, nit, pdas_ok, stat, errmsg)
                this%iterations = this%iterations + nit
                if (stat /= 0) return
                if (pdas_ok) exit
+               if (itry == 1) state_first = this%state
             end do
+            if (.not. pdas_ok .and. this%coulomb) then
+               ! Coulomb: the Tresca subproblem's active-set iteration cycles; a semismooth Newton
+               ! iteration on the Coulomb problem itself, from the first try's sets
+               this%state = state_first
+               call coulomb_newton(this, model, cvec, nit, pdas_ok, stat, errmsg)
+               this%iterations = this%iterations + nit
+               if (stat /= 0) return
+               if (pdas_ok) then
+                  done = .true.
+                  exit
+               end if
+            end if
             if (.not. pdas_ok) then
                converged = .false.
                message = 'the active-set iteration cycled or did not settle in '//str(max_pdas)//' iterations'
                exit
             end if
             call nodal_forces(this, model)
-            if (.not. this%scope_contact) then
+            if (.not. this%law_fp) then
                done = .true.
                exit
             end if
-            ! tresca_scope = 'contact': no friction where F_n <= 0 (as contact2d_contact does)
-            do k = 1, this%nt
-               mask(k, iouter) = merge(1, 0, this%fn(this%cnode(this%nc + k)) > 0)
-            end do
-            if (iouter > 1) then
-               if (all(mask(:, iouter) == mask(:, iouter - 1))) then
+            hist(:, iouter) = lim
+            call law_limits(this, model, this%fn, this%mu, lim_new)
+            if (debug) then
+               do k = 1, this%nt
+                  if (lim_new(k) /= lim(k)) print '(a,i4,i5,4es12.4)', 'fp', iouter, k, lim(k), lim_new(k), &
+                     this%mu(this%cnode(this%nc + k)), this%fn(this%cnode(this%nc + k))
+               end do
+            end if
+            scale = max(absmax(lim_new), absmax(lim), tiny(1.0_wp))
+            ! Coulomb: once the sets repeat (or the limits have settled), the fixed point of the
+            ! limits with these sets is one linear solve; it is the answer if the sets hold
+            if (this%coulomb .and. (all(this%state == state_prev) .or. &
+                                    absmax(lim_new - lim) <= fp_tol*scale)) then
+               call coulomb_exact(this, model, cvec, ok_exact, stat, errmsg)
+               if (stat /= 0) return
+               if (ok_exact) then
                   done = .true.
                   exit
                end if
-               do i = 1, iouter - 2
-                  if (all(mask(:, iouter) == mask(:, i))) exit
-               end do
-               if (i <= iouter - 2) then
-                  converged = .false.
-                  message = "the fixed point on the friction thresholds (tresca_scope = 'contact') cycles "// &
-                            '(period '//str(iouter - i)//')'
-                  exit
-               end if
             end if
-            lim = merge(this%limit, 0.0_wp, mask(:, iouter) == 1)
+            if (absmax(lim_new - lim) <= fp_tol*scale) then
+               done = .true.
+               exit
+            end if
+            do i = 1, iouter - 1
+               if (absmax(lim_new - hist(:, i)) <= fp_tol*scale) exit
+            end do
+            if (i <= iouter - 1) then
+               converged = .false.
+               message = 'the fixed point on the friction limits ('//trim(model%contact%law%name())// &
+                         ') cycles (period '//str(iouter + 1 - i)//')'
+               exit
+            end if
+            state_prev = this%state
+            lim = lim_new
          end do
          if (.not. done .and. converged) then
             converged = .false.
-            message = 'the fixed point on the friction thresholds did not settle in '//str(max_outer)//' iterations'
+            message = 'the fixed point on the friction limits did not settle in '//str(max_outer)//' passes'
          end if
          if (.not. pdas_ok) call nodal_forces(this, model)
       end if
+      ! one solve: u = K^-1 (f + F_c). The condensed operator and this solve come from the same
+      ! factor, so the KKT residuals of u are at round-off level without refinement (docs/static.md
+      ! step 5: iterative refinement of u and of the multipliers changed u by at most 2.4e-11
+      ! relative at level 6 and did not lower the residuals)
       call displacement(this, model, f, up, stat)
       if (stat /= 0) then
          errmsg = 'CHOLMOD solve failed'
          return
-      end if
-      ! refine the multipliers of the fixed sets against the full solve (it removes the round-off
-      ! of the condensed operator): y_J(u) should vanish; d lambda_J = (A_JJ - A_JK A_KK^-1 A_KJ) y_J
-      if (this%m > 0 .and. converged) then
-         do k = 1, 2
-            call refine_multipliers(this, model, uprev, stat, errmsg)
-            if (stat /= 0) return
-            call nodal_forces(this, model)
-            call displacement(this, model, f, up, stat)
-            if (stat /= 0) then
-               errmsg = 'CHOLMOD solve failed'
-               return
-            end if
-         end do
       end if
       call kkt_residuals(this, model, uprev)
       call system_clock(t1)
       this%time_pdas = this%time_pdas + real(t1 - t0, wp)/rate
    end subroutine static_increment
 
-   !> u = K^-1 (f0 + contact forces) on the free dofs, up on the prescribed ones, with one step
-   !> of iterative refinement against the element-by-element K u; fc and fint follow.
+   !> u = K^-1 (f0 + contact forces) on the free dofs, up on the prescribed ones; fc and fint
+   !> (element by element) follow.
    subroutine displacement(this, model, f0, up, stat)
       type(static_t), intent(inout) :: this
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: f0(:), up(:, :)
       integer, intent(out) :: stat
       real(wp) :: f(this%nfree), x(this%nfree)
-      integer :: i, n, c, pass
+      integer :: i, n, c
       this%fc = 0
       do i = 1, this%nc
          n = model%contact%node(i)
@@ -496,79 +542,189 @@ contains
       end do
       this%u = up
       f = f0
-      do pass = 1, 2
-         if (pass == 2) then
-            ! the residual of the first pass: f_ext + F_c - K u on the free dofs
-            do n = 1, this%nnode
-               do c = 1, 2
-                  if (this%dof(c, n) > 0) f(this%dof(c, n)) = this%fext(c, n) + this%fc(c, n) - this%fint(c, n)
-               end do
-            end do
-         else
-            do n = 1, this%nnode
-               do c = 1, 2
-                  if (this%dof(c, n) > 0) f(this%dof(c, n)) = f(this%dof(c, n)) + this%fc(c, n)
-               end do
-            end do
-         end if
-         call this%chol%solve(f, x, stat)
-         if (stat /= 0) return
-         do n = 1, this%nnode
-            do c = 1, 2
-               if (this%dof(c, n) > 0) this%u(c, n) = this%u(c, n) + x(this%dof(c, n))
-            end do
+      do n = 1, this%nnode
+         do c = 1, 2
+            if (this%dof(c, n) > 0) f(this%dof(c, n)) = f(this%dof(c, n)) + this%fc(c, n)
          end do
-         call model%stiff%apply(this%u, this%fint)
       end do
+      call this%chol%solve(f, x, stat)
+      if (stat /= 0) return
+      do n = 1, this%nnode
+         do c = 1, 2
+            if (this%dof(c, n) > 0) this%u(c, n) = this%u(c, n) + x(this%dof(c, n))
+         end do
+      end do
+      call model%stiff%apply(this%u, this%fint)
    end subroutine displacement
 
-   !> lambda_J += (A_JJ - A_JK A_KK^-1 A_KJ) y_J(u) on the fixed-displacement set J (active
-   !> normal, stick), y measured on the full displacement u: one step of iterative refinement.
-   subroutine refine_multipliers(this, model, uprev, stat, errmsg)
-      type(static_t), intent(inout) :: this
+   !> The friction law's limits (docs/friction.md section 2) of the tangential unknowns for the
+   !> nodal normal forces fn and the P0 cell multipliers mu (the contact measure: fn for P1, mu
+   !> for P0, as contact2d_contact passes it).
+   subroutine law_limits(this, model, fn, mu, limk)
+      type(static_t), intent(in) :: this
       type(model_t), intent(in) :: model
-      real(wp), intent(in) :: uprev(:, :)
-      integer, intent(out) :: stat
-      character(len=:), allocatable, intent(out) :: errmsg
-      real(wp) :: y(this%m), d(this%nc)
-      real(wp), allocatable :: akk(:, :), z(:), e(:), dl(:)
-      integer, allocatable :: jset(:), kset(:)
-      integer :: i, r, nk, info
-      external :: dpotrf, dpotrs
-      stat = 0
-      errmsg = ''
-      do i = 1, this%nc
-         d(i) = dot_product(this%u(:, model%contact%node(i)), model%contact%normal(:, i)) - model%contact%gap(i)
+      real(wp), intent(in) :: fn(:), mu(:)
+      real(wp), intent(out) :: limk(:)
+      real(wp) :: limnode(this%nc)
+      integer :: k
+      if (.not. this%law_fp) then
+         limk = this%limit
+         return
+      end if
+      if (this%p0) then
+         call model%contact%law%limits(fn, mu, limnode)
+      else
+         call model%contact%law%limits(fn, fn, limnode)
+      end if
+      do k = 1, this%nt
+         limk(k) = limnode(this%cnode(this%nc + k))
+      end do
+   end subroutine law_limits
+
+   !> Coulomb with the sets fixed (normal active/inactive, stick, slip +-, no friction): the
+   !> limits mu_i F_n,i are linear in the normal multipliers, so the condensed problem
+   !> A y + lambda = rhs with y_J = 0 (active, stick), lambda = 0 (inactive, no friction) and
+   !> lambda_r = +-mu_i (T lambda_n)_i (slip; T = I for P1, D for P0) is one linear system in
+   !> (y_K, lambda_J), solved with LAPACK dgesv (it is not symmetric). info /= 0: singular.
+   subroutine coulomb_sets_solve(this, model, rhs, lam, y, info)
+      type(static_t), intent(in) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: rhs(:)
+      real(wp), intent(out) :: lam(:), y(:)
+      integer, intent(out) :: info
+      real(wp), allocatable :: mat(:, :), z(:, :)
+      real(wp) :: fnode(this%nc), sg, tij
+      integer, allocatable :: ipiv(:)
+      integer :: k, r, i, j, m, nc
+      m = this%m
+      nc = this%nc
+      allocate (mat(m, m), z(m, 1), ipiv(m))
+      mat = 0
+      do k = 1, m
+         if (any(this%state(k) == [1, 3])) then
+            mat(k, k) = 1
+         else
+            mat(:, k) = this%a(:, k)
+         end if
+      end do
+      do r = nc + 1, m
+         if (abs(this%state(r)) /= 2) cycle
+         i = this%cnode(r)
+         sg = sign(1.0_wp, real(this%state(r), wp))
+         do j = max(i - 1, 1), min(i + 1, nc)
+            if (this%state(j) /= 1) cycle
+            if (i == j) then
+               tij = 1
+               if (this%p0) tij = model%contact%dd(i)
+            else if (this%p0) then
+               tij = model%contact%dl(min(i, j))
+            else
+               tij = 0
+            end if
+            mat(r, j) = mat(r, j) + sg*this%mu_coef(i)*tij
+         end do
+      end do
+      z(:, 1) = rhs
+      call dense_gesv(m, 1, mat, m, ipiv, z, m, info)
+      y = 0
+      lam = 0
+      if (info /= 0) return
+      do k = 1, m
+         if (any(this%state(k) == [1, 3])) then
+            lam(k) = z(k, 1)
+         else
+            y(k) = z(k, 1)
+         end if
       end do
       if (this%p0) then
-         call d_apply(model, d, y(1:this%nc))
+         call d_apply(model, lam(1:nc), fnode)
       else
-         y(1:this%nc) = d
+         fnode = lam(1:nc)
       end if
-      do r = this%nc + 1, this%m
-         i = model%contact%node(this%cnode(r))
-         y(r) = dot_product(this%u(:, i) - uprev(:, i), this%bdir(:, r))
+      do r = nc + 1, m
+         if (abs(this%state(r)) /= 2) cycle
+         lam(r) = sign(1.0_wp, real(this%state(r), wp))*this%mu_coef(this%cnode(r))*fnode(this%cnode(r))
       end do
-      jset = pack([(r, r=1, this%m)], this%state == 1 .or. this%state == 3)
-      kset = pack([(r, r=1, this%m)], .not. (this%state == 1 .or. this%state == 3))
-      if (size(jset) == 0) return
-      e = y(jset)
-      dl = matmul(this%a(jset, jset), e)
-      nk = size(kset)
-      if (nk > 0) then
-         akk = this%a(kset, kset)
-         z = matmul(this%a(kset, jset), e)
-         call dpotrf('L', nk, akk, nk, info)
-         if (info /= 0) then
-            stat = 2
-            errmsg = 'LAPACK dpotrf failed on the condensed contact matrix (info = '//str(info)//')'
+   end subroutine coulomb_sets_solve
+
+   !> Semismooth Newton (active-set) iteration on the Coulomb problem itself: with the current
+   !> sets, the exact fixed-set solution (coulomb_sets_solve), then the sets it implies with the
+   !> limits mu F_n of its own forces; until the sets repeat (ok: every condition holds) or an
+   !> earlier set comes back or max_pdas is reached (not ok; lambda unchanged).
+   subroutine coulomb_newton(this, model, cvec, nit, ok, stat, errmsg)
+      type(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: cvec(:)
+      integer, intent(out) :: nit
+      logical, intent(out) :: ok
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      real(wp) :: lam(this%m), y(this%m), fnode(this%nc), limk(this%nt)
+      integer :: new_state(this%m), info, it, j
+      integer, allocatable :: hist(:, :)
+      stat = 0
+      errmsg = ''
+      ok = .false.
+      nit = 0
+      allocate (hist(this%m, max_pdas))
+      do it = 1, max_pdas
+         nit = it
+         hist(:, it) = this%state
+         call coulomb_sets_solve(this, model, cvec, lam, y, info)
+         if (info /= 0) return
+         if (this%p0) then
+            call d_apply(model, lam(1:this%nc), fnode)
+            call law_limits(this, model, fnode, lam(1:this%nc), limk)
+         else
+            call law_limits(this, model, lam(1:this%nc), lam(1:this%nc), limk)
+         end if
+         call classify(this%a, this%nc, lam, y, limk, ct_tries(1), new_state)
+         if (debug) print '(a,i4,a,6i6)', 'ssn ', it, ' active/inactive/stick/slip+/slip-/free', &
+            count(new_state == 1), count(new_state == 0), count(new_state == 3), count(new_state == 2), &
+            count(new_state == -2), count(new_state == 4)
+         if (all(new_state == this%state)) then
+            ok = .true.
+            this%lambda = lam
+            call nodal_forces(this, model)
             return
          end if
-         call dpotrs('L', nk, 1, akk, nk, z, nk, info)
-         dl = dl - matmul(this%a(jset, kset), z)
+         do j = 1, it
+            if (all(new_state == hist(:, j))) return   ! cycling
+         end do
+         this%state = new_state
+      end do
+   end subroutine coulomb_newton
+
+   !> The exact Coulomb solution for the current sets (coulomb_sets_solve on A (y - y0) +
+   !> lambda = 0), kept (ok) only if the sets it implies are the same, the limits being
+   !> mu F_n of its own forces: then every condition of the condensed problem holds.
+   subroutine coulomb_exact(this, model, cvec, ok, stat, errmsg)
+      type(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: cvec(:)
+      logical, intent(out) :: ok
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      real(wp) :: lam(this%m), y(this%m), fnode(this%nc), limk(this%nt)
+      integer :: check(this%m), info
+      stat = 0
+      errmsg = ''
+      ok = .false.
+      call coulomb_sets_solve(this, model, cvec, lam, y, info)
+      if (info /= 0) return   ! singular with these sets: go on with the fixed point
+      if (this%p0) then
+         call d_apply(model, lam(1:this%nc), fnode)
+         call law_limits(this, model, fnode, lam(1:this%nc), limk)
+      else
+         call law_limits(this, model, lam(1:this%nc), lam(1:this%nc), limk)
       end if
-      this%lambda(jset) = this%lambda(jset) + dl
-   end subroutine refine_multipliers
+      call classify(this%a, this%nc, lam, y, limk, ct_tries(1), check)
+      ok = all(check == this%state)
+      if (ok) then
+         this%lambda = lam
+         call nodal_forces(this, model)
+      end if
+   end subroutine coulomb_exact
 
    !> Nodal forces from lambda: F_n = T lambda_n (mu for P0), F_t per node.
    subroutine nodal_forces(this, model)
@@ -588,105 +744,120 @@ contains
       end do
    end subroutine nodal_forces
 
-   !> Primal-dual active set on A (y - y0) + lambda = 0 (cvec = A y0): unknown r is in state
+   !> Primal-dual active set on the condensed problem A (y - y0) + lambda = 0 (cvec = A y0), on
+   !> plain arrays (the engine's pass and the unit tests call it): a(m, m) SPD, the first nc unknowns
+   !> normal, the others tangential with limits lim(m - nc). Unknown r is in state
    !> 1 (normal active: y = 0), 0 (normal inactive: lambda = 0), 3 (stick: y = 0),
    !> +2 / -2 (slip: lambda = +-lim), 4 (no friction: lambda = 0). The sets follow
-   !> lambda_n = max(0, lambda_n + k y_n), lambda_t = proj(lambda_t + k y_t) with k = A_rr.
-   !> ok = .false. if a set repeats an earlier one (cycle) or max_pdas is reached.
-   subroutine pdas(this, cvec, lim, ct, nit, ok, stat, errmsg)
-      type(static_t), intent(inout) :: this
-      real(wp), intent(in) :: cvec(:), lim(:)
+   !> lambda_n = max(0, lambda_n + A_rr y_n), lambda_t = proj(lambda_t + ct A_rr y_t).
+   !> state on entry: the starting sets (-99 in state(1): everything in contact and stuck); on exit
+   !> the last sets, lambda the multipliers and y the contact unknowns of the last solve.
+   !> ok = .false. if a set repeats an earlier one (a cycle) or max_iter is reached: lambda is then
+   !> the last iterate, not a solution. stat /= 0 only on a LAPACK failure.
+   subroutine pdas_solve(a, nc, cvec, lim, ct, max_iter, state, lambda, y, nit, ok, stat, errmsg)
+      real(wp), intent(in) :: a(:, :), cvec(:), lim(:)
+      integer, intent(in) :: nc
       real(wp), intent(in) :: ct   !< tangential complementarity constant, a fraction of A_rr
+      integer, intent(in) :: max_iter
+      integer, intent(inout) :: state(:)
+      real(wp), intent(inout) :: lambda(:)
+      real(wp), intent(out) :: y(:)
       integer, intent(out) :: nit
       logical, intent(out) :: ok
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       integer, allocatable :: hist(:, :), free_set(:), new_state(:)
-      real(wp), allocatable :: y(:), akk(:, :), rhs(:)
-      integer :: it, r, nk, info, j
-      external :: dpotrf, dpotrs
+      real(wp), allocatable :: akk(:, :), rhs(:)
+      integer :: it, r, nk, info, j, m
 
       stat = 0
       errmsg = ''
       ok = .false.
-      allocate (hist(this%m, max_pdas), y(this%m), new_state(this%m))
-      ! start: the previous sets (warm start), else everything in contact and stuck
-      if (this%state(1) == -99) then
-         this%state(1:this%nc) = 1
-         this%state(this%nc + 1:) = 3
-      end if
-      do r = this%nc + 1, this%m
-         if (lim(r - this%nc) <= 0) this%state(r) = 4
-         if (lim(r - this%nc) > 0 .and. this%state(r) == 4) this%state(r) = 3
-      end do
+      m = size(cvec)
+      allocate (hist(m, max(max_iter, 1)), new_state(m))
+      y = 0
       nit = 0
-      do it = 1, max_pdas
+      if (m == 0) then
+         ok = .true.
+         return
+      end if
+      ! start: the previous sets (warm start), else everything in contact and stuck
+      if (state(1) == -99) then
+         state(1:nc) = 1
+         state(nc + 1:) = 3
+      end if
+      do r = nc + 1, m
+         if (lim(r - nc) <= 0) state(r) = 4
+         if (lim(r - nc) > 0 .and. state(r) == 4) state(r) = 3
+      end do
+      do it = 1, max_iter
          nit = it
-         hist(:, it) = this%state
+         hist(:, it) = state
          ! known lambda on K (inactive, slip, no friction), y = 0 on J (active, stick)
-         free_set = pack([(r, r=1, this%m)], this%state == 0 .or. abs(this%state) == 2 .or. this%state == 4)
-         do r = 1, this%m
-            select case (this%state(r))
-            case (0, 4); this%lambda(r) = 0
-            case (2); this%lambda(r) = lim(r - this%nc)
-            case (-2); this%lambda(r) = -lim(r - this%nc)
+         free_set = pack([(r, r=1, m)], state == 0 .or. abs(state) == 2 .or. state == 4)
+         do r = 1, m
+            select case (state(r))
+            case (0, 4); lambda(r) = 0
+            case (2); lambda(r) = lim(r - nc)
+            case (-2); lambda(r) = -lim(r - nc)
             end select
          end do
          nk = size(free_set)
          ! A_KK (y_K - y0_K) - A_KJ y0_J = -lambda_K  =>  A_KK y_K = cvec_K - lambda_K
          y = 0
          if (nk > 0) then
-            akk = this%a(free_set, free_set)
-            rhs = cvec(free_set) - this%lambda(free_set)
-            call dpotrf('L', nk, akk, nk, info)
+            akk = a(free_set, free_set)
+            rhs = cvec(free_set) - lambda(free_set)
+            call dense_potrf('L', nk, akk, nk, info)
             if (info /= 0) then
                stat = 2
                errmsg = 'LAPACK dpotrf failed on the condensed contact matrix (info = '//str(info)//')'
                return
             end if
-            call dpotrs('L', nk, 1, akk, nk, rhs, nk, info)
+            call dense_potrs('L', nk, 1, akk, nk, rhs, nk, info)
             y(free_set) = rhs
          end if
          ! lambda_J = cvec_J - A_JK y_K
-         do r = 1, this%m
-            if (any(this%state(r) == [1, 3])) then
-               this%lambda(r) = cvec(r) - dot_product(this%a(r, free_set), y(free_set))
+         do r = 1, m
+            if (any(state(r) == [1, 3])) then
+               lambda(r) = cvec(r) - dot_product(a(r, free_set), y(free_set))
             end if
          end do
-         call classify(this, this%lambda, y, lim, ct, new_state)
+         call classify(a, nc, lambda, y, lim, ct, new_state)
          if (debug) print '(a,i4,a,6i6)', 'pdas', it, ' active/inactive/stick/slip+/slip-/free', &
             count(new_state == 1), count(new_state == 0), count(new_state == 3), count(new_state == 2), &
             count(new_state == -2), count(new_state == 4)
-         if (all(new_state == this%state)) then
+         if (all(new_state == state)) then
             ok = .true.
             return
          end if
          do j = 1, it - 1
             if (all(new_state == hist(:, j))) then
-               this%state = new_state
+               state = new_state
                return   ! cycling
             end if
          end do
-         this%state = new_state
+         state = new_state
       end do
-   end subroutine pdas
+   end subroutine pdas_solve
 
-   !> The sets from (lambda, y): see pdas.
-   subroutine classify(this, lambda, y, lim, ct, state)
-      type(static_t), intent(in) :: this
+   !> The sets from (lambda, y): see pdas_solve.
+   pure subroutine classify(a, nc, lambda, y, lim, ct, state)
+      real(wp), intent(in) :: a(:, :)
+      integer, intent(in) :: nc
       real(wp), intent(in) :: lambda(:), y(:), lim(:), ct
       integer, intent(out) :: state(:)
       integer :: r
       real(wp) :: v
-      do r = 1, this%nc
-         state(r) = merge(1, 0, lambda(r) + this%a(r, r)*y(r) > 0)
+      do r = 1, nc
+         state(r) = merge(1, 0, lambda(r) + a(r, r)*y(r) > 0)
       end do
-      do r = this%nc + 1, this%m
-         if (lim(r - this%nc) <= 0) then
+      do r = nc + 1, size(lambda)
+         if (lim(r - nc) <= 0) then
             state(r) = 4
          else
-            v = lambda(r) + ct*this%a(r, r)*y(r)
-            if (abs(v) <= lim(r - this%nc)) then
+            v = lambda(r) + ct*a(r, r)*y(r)
+            if (abs(v) <= lim(r - nc)) then
                state(r) = 3
             else
                state(r) = merge(2, -2, v > 0)
@@ -704,7 +875,7 @@ contains
       type(static_t), intent(inout) :: this
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: uprev(:, :)
-      real(wp) :: umax, d(this%nc), e(this%nc), lam(this%nc), lmax, psi, r, rfree, scale
+      real(wp) :: umax, d(this%nc), e(this%nc), lam(this%nc), lmax, psi, r, rfree, scale, limk(this%nt)
       integer :: i, n, c, k
 
       this%kkt = 0
@@ -724,23 +895,19 @@ contains
          lmax = max(maxval(abs(lam)), tiny(1.0_wp))
          this%kkt(1) = max(maxval(e), 0.0_wp)/umax
          this%kkt(2) = max(maxval(abs(lam*e))/(lmax*umax), maxval(-lam)/lmax, 0.0_wp)
-         lmax = maxval(this%limit, mask=this%limit > 0)
-         if (this%nt > 0 .and. lmax > 0) then
-            do k = 1, this%nt
-               i = this%cnode(this%nc + k)
-               n = model%contact%node(i)
-               psi = dot_product(this%u(:, n) - uprev(:, n), model%contact%tangent(:, i))
-               associate (ft => this%ft(i), s => this%limit(k))
-                  if (this%scope_contact .and. this%fn(i) <= 0) then
-                     ! no friction on this node: F_t must vanish
-                     this%kkt(3) = max(this%kkt(3), abs(ft)/lmax)
-                  else
-                     this%kkt(3) = max(this%kkt(3), max(abs(ft) - s, 0.0_wp)/lmax, &
-                                       abs(s*abs(psi) - ft*psi)/(lmax*umax))
-                  end if
-               end associate
-            end do
-         end if
+         ! the limits of the final forces (Tresca s_i w_i; Coulomb mu F_n,i; tresca_scope =
+         ! 'contact': none out of contact), so a node without a limit must carry no F_t
+         call law_limits(this, model, this%fn, this%mu, limk)
+         lmax = max(absmax(limk), tiny(1.0_wp))
+         do k = 1, this%nt
+            i = this%cnode(this%nc + k)
+            n = model%contact%node(i)
+            psi = dot_product(this%u(:, n) - uprev(:, n), model%contact%tangent(:, i))
+            associate (ft => this%ft(i), s => limk(k))
+               this%kkt(3) = max(this%kkt(3), max(abs(ft) - s, 0.0_wp)/lmax, &
+                                 abs(s*abs(psi) - ft*psi)/(lmax*umax))
+            end associate
+         end do
       end if
       rfree = 0
       scale = 0
@@ -757,6 +924,13 @@ contains
       end do
       this%kkt(4) = merge(rfree/scale, rfree, scale > 0)
    end subroutine kkt_residuals
+
+   !> max |x|, 0 for an empty x.
+   pure real(wp) function absmax(x)
+      real(wp), intent(in) :: x(:)
+      absmax = 0
+      if (size(x) > 0) absmax = maxval(abs(x))
+   end function absmax
 
    subroutine static_free(this)
       class(static_t), intent(inout) :: this
