@@ -26,8 +26,8 @@ module contact2d_rows
 
    !> Blocks per row of the fixed-width part.
    integer, parameter :: ell_width = 9
-   !> Block rows per chunk (and per partial sum): the chunk's state (about 15 arrays of
-   !> 2 x 256 doubles) stays in the first-level cache between the three loops.
+   !> Block rows per chunk (and per partial sum): the chunk's u, v, K u, u~ and masses (2 x 256
+   !> doubles each) stay in the first-level cache from the products to the predictor loop.
    integer, parameter :: chunk_rows = 256
 
    !> The block rows of K of a general mesh (row r is node r), laid out for the sweep.
