@@ -581,6 +581,22 @@ contains
       end do
    end subroutine law_limits
 
+   !> The friction limits implied by the multipliers lam (normal part first): law_limits on the
+   !> nodal normal forces (P0: F_n = D^T mu_n) and the normal multipliers themselves.
+   subroutine multiplier_limits(this, model, lam, limk)
+      type(static_t), intent(in) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: lam(:)
+      real(wp), intent(out) :: limk(:)
+      real(wp) :: fnode(this%nc)
+      if (this%p0) then
+         call d_apply(model, lam(1:this%nc), fnode)
+         call law_limits(this, model, fnode, lam(1:this%nc), limk)
+      else
+         call law_limits(this, model, lam(1:this%nc), lam(1:this%nc), limk)
+      end if
+   end subroutine multiplier_limits
+
    !> Coulomb with the sets fixed (normal active/inactive, stick, slip +-, no friction): the
    !> limits mu_i F_n,i are linear in the normal multipliers, so the condensed problem
    !> A y + lambda = rhs with y_J = 0 (active, stick), lambda = 0 (inactive, no friction) and
@@ -659,7 +675,7 @@ contains
       logical, intent(out) :: ok
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      real(wp) :: lam(this%m), y(this%m), fnode(this%nc), limk(this%nt)
+      real(wp) :: lam(this%m), y(this%m), limk(this%nt)
       integer :: new_state(this%m), info, it, j
       integer, allocatable :: hist(:, :)
       stat = 0
@@ -672,12 +688,7 @@ contains
          hist(:, it) = this%state
          call coulomb_sets_solve(this, model, cvec, lam, y, info)
          if (info /= 0) return
-         if (this%p0) then
-            call d_apply(model, lam(1:this%nc), fnode)
-            call law_limits(this, model, fnode, lam(1:this%nc), limk)
-         else
-            call law_limits(this, model, lam(1:this%nc), lam(1:this%nc), limk)
-         end if
+         call multiplier_limits(this, model, lam, limk)
          call classify(this%a, this%nc, lam, y, limk, ct_tries(1), new_state)
          if (debug) print '(a,i4,a,6i6)', 'ssn ', it, ' active/inactive/stick/slip+/slip-/free', &
             count(new_state == 1), count(new_state == 0), count(new_state == 3), count(new_state == 2), &
@@ -705,19 +716,14 @@ contains
       logical, intent(out) :: ok
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      real(wp) :: lam(this%m), y(this%m), fnode(this%nc), limk(this%nt)
+      real(wp) :: lam(this%m), y(this%m), limk(this%nt)
       integer :: check(this%m), info
       stat = 0
       errmsg = ''
       ok = .false.
       call coulomb_sets_solve(this, model, cvec, lam, y, info)
       if (info /= 0) return   ! singular with these sets: go on with the fixed point
-      if (this%p0) then
-         call d_apply(model, lam(1:this%nc), fnode)
-         call law_limits(this, model, fnode, lam(1:this%nc), limk)
-      else
-         call law_limits(this, model, lam(1:this%nc), lam(1:this%nc), limk)
-      end if
+      call multiplier_limits(this, model, lam, limk)
       call classify(this%a, this%nc, lam, y, limk, ct_tries(1), check)
       ok = all(check == this%state)
       if (ok) then
