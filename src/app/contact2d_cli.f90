@@ -1,5 +1,6 @@
 !> Command line: contact2d DECK [-o OUT.h5] [--force] [--static] [--set group:variable=value ...]
 module contact2d_cli
+   use contact2d_strings, only: str
    implicit none
    private
    public :: cli_t, cli_parse, usage
@@ -73,7 +74,7 @@ contains
             nset = nset + 1
             arg = argument(i)
             if (len(arg) > arg_len) then
-               errmsg = '--set argument '//arg(1:40)//'... is longer than the '//itoa(arg_len)// &
+               errmsg = '--set argument '//arg(1:40)//'... is longer than the '//str(arg_len)// &
                         ' characters accepted'
                return
             end if
@@ -110,14 +111,6 @@ contains
       allocate (character(len=l) :: a)
       if (l > 0) call get_command_argument(i, a)
    end function argument
-
-   function itoa(i) result(s)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: s
-      character(len=16) :: buf
-      write (buf, '(i0)') i
-      s = trim(buf)
-   end function itoa
 
    !> File name without directory and extension.
    function stem(path) result(s)
