@@ -12,10 +12,13 @@ module contact2d_threads
    private
    public :: thread_tuner_t
 
-   !> Chunks (calls of the step loop) between probes of the other thread count, chunks per probe,
-   !> and the weight of a new measurement in the running estimate.
-   integer, parameter :: probe_every = 40, probe_chunks = 3
-   real(wp), parameter :: weight = 0.3_wp
+   !> Chunks (calls of the step loop) between probes of the other thread count (doubled after each
+   !> probe that did not switch, up to probe_every_max: a team on a busy core can be many times
+   !> slower than one thread, and each probe pays for it), chunks per probe, the weight of a new
+   !> measurement in the running estimate, and the slowdown of a probe's first counted chunk
+   !> against the count in use that ends the probe at once.
+   integer, parameter :: probe_every = 40, probe_every_max = 640, probe_chunks = 3
+   real(wp), parameter :: weight = 0.3_wp, probe_abort = 1.5_wp
 
    type :: thread_tuner_t
       logical :: active = .false.
@@ -24,6 +27,8 @@ module contact2d_threads
       real(wp) :: per_step(2) = 0        !< running seconds per step: (1) one thread, (2) nmax
       integer :: chunks = 0              !< chunks since the last decision
       integer :: probing = 0             !< chunks left in a probe of the other count
+      integer :: interval = probe_every  !< chunks between probes now
+      integer :: before = 1              !< count in use before the probe
       integer :: switches = 0            !< changes of the thread count
       integer(8) :: steps(2) = 0         !< steps run with one thread and with nmax
    contains
@@ -67,15 +72,25 @@ contains
       end if
       if (this%probing > 0) then
          this%probing = this%probing - 1
+         ! a first counted chunk much slower than the count in use ends the probe
+         if (this%probing > 0 .and. this%probing < probe_chunks - 1 .and. this%per_step(3 - k) > 0) then
+            if (this%per_step(k) > probe_abort*this%per_step(3 - k)) this%probing = 0
+         end if
          if (this%probing > 0) return
-         ! probe over: the faster of the two
+         ! probe over: the faster of the two; probe less often while the count does not change
          best = minloc(this%per_step, dim=1)
          call use_count(this, merge(1, this%nmax, best == 1))
+         if (this%current == this%before) then
+            this%interval = min(2*this%interval, probe_every_max)
+         else
+            this%interval = probe_every
+         end if
          this%chunks = 0
          return
       end if
-      ! the first probe soon (both estimates), then every probe_every chunks
-      if ((this%per_step(3 - k) == 0 .and. this%chunks >= 4) .or. this%chunks >= probe_every) then
+      ! the first probe soon (both estimates), then every interval chunks
+      if ((this%per_step(3 - k) == 0 .and. this%chunks >= 4) .or. this%chunks >= this%interval) then
+         this%before = this%current
          call use_count(this, merge(this%nmax, 1, this%current == 1))
          this%probing = probe_chunks
          this%chunks = 0

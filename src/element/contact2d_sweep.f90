@@ -172,8 +172,11 @@ contains
       integer, intent(in) :: nscr
       real(wp), intent(inout) :: scr(0:, :, 0:)
       integer :: j, rt, t
-      ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it)
-      !$omp parallel do schedule(dynamic) if(par) private(rt, t) num_threads(max(1, min(omp_get_max_threads(), nscr)))
+      ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it).
+      ! Static rows: each thread keeps the same block of rows every step, so they stay in its own
+      ! cache (dynamic sharing moved rows between cores: 1.7x slower on two threads, measured
+      ! in docs/performance.md "Threads that never hurt")
+      !$omp parallel do schedule(static) if(par) private(rt, t) num_threads(max(1, min(omp_get_max_threads(), nscr)))
       do j = 0, ny
          rt = row_type(j, ny)
          if (sym .and. rt == 2) then
