@@ -29,6 +29,7 @@ module contact2d_threads
       integer :: probing = 0             !< chunks left in a probe of the other count
       integer :: interval = probe_every  !< chunks between probes now
       integer :: before = 1              !< count in use before the probe
+      logical :: fresh = .true.          !< the next chunk is the first with this count: not counted
       integer :: switches = 0            !< changes of the thread count
       integer(8) :: steps(2) = 0         !< steps run with one thread and with nmax
    contains
@@ -62,9 +63,11 @@ contains
       this%steps(k) = this%steps(k) + nsteps
       if (.not. this%active) return
       this%chunks = this%chunks + 1
-      if (this%probing == probe_chunks) then
-         ! the first chunk after a switch wakes the threads: not counted, the estimate restarts
+      if (this%fresh) then
+         ! the first chunk of the run and the first after a switch wake the threads: not
+         ! counted, the estimate restarts
          this%per_step(k) = 0
+         this%fresh = .false.
       else if (this%per_step(k) == 0) then
          this%per_step(k) = seconds/nsteps
       else
@@ -103,6 +106,7 @@ contains
       if (n /= this%current) then
          this%switches = this%switches + 1
          this%current = n
+         this%fresh = .true.
          call omp_set_num_threads(n)
       end if
    end subroutine use_count
