@@ -40,7 +40,8 @@ module contact2d_threads
 contains
 
    !> Active if OMP_NUM_THREADS is unset, the machine has more than one thread and the mesh is
-   !> large enough for the kernels to go parallel.
+   !> large enough for the kernels to go parallel. An active tuner starts on one thread and
+   !> probes the full team after a few chunks: a team on a busy core is the costly mistake.
    subroutine tuner_init(this, parallel_mesh)
       class(thread_tuner_t), intent(out) :: this
       logical, intent(in) :: parallel_mesh
@@ -49,6 +50,10 @@ contains
       this%nmax = omp_get_max_threads()
       this%current = this%nmax
       this%active = status /= 0 .and. this%nmax > 1 .and. parallel_mesh
+      if (this%active) then
+         this%current = 1
+         call omp_set_num_threads(1)
+      end if
    end subroutine tuner_init
 
    !> After a chunk of nsteps steps that took seconds: update the estimate of the count in use,
