@@ -7,7 +7,8 @@
 !> Active only when the user did not set OMP_NUM_THREADS (then the team is the user's).
 module contact2d_threads
    use contact2d_kinds, only: wp
-   use omp_lib, only: omp_get_max_threads, omp_set_num_threads
+   use, intrinsic :: iso_c_binding, only: c_int
+   use omp_lib, only: omp_get_max_threads, omp_set_num_threads, omp_get_thread_num
    implicit none
    private
    public :: thread_tuner_t
@@ -19,6 +20,15 @@ module contact2d_threads
    !> against the count in use that ends the probe at once.
    integer, parameter :: probe_every = 40, probe_every_max = 640, probe_chunks = 3
    real(wp), parameter :: weight = 0.3_wp, probe_abort = 1.5_wp
+
+   interface
+      !> Move the calling thread to the k-th CPU allowed to it, then allow them all again
+      !> (contact2d_affinity.c); 0 on success.
+      integer(c_int) function affinity_nudge(k) bind(C, name='contact2d_affinity_nudge')
+         import :: c_int
+         integer(c_int), value :: k
+      end function affinity_nudge
+   end interface
 
    type :: thread_tuner_t
       logical :: active = .false.
@@ -105,14 +115,23 @@ contains
       end if
    end subroutine tuner_update
 
+   !> Use n threads from the next chunk on; a team is spread over the CPUs once (each thread of
+   !> it moved to a CPU of its own, then free again): woken threads otherwise share the waker's
+   !> core on the project's VM (docs/performance.md).
    subroutine use_count(this, n)
       type(thread_tuner_t), intent(inout) :: this
       integer, intent(in) :: n
+      integer(c_int) :: rc
       if (n /= this%current) then
          this%switches = this%switches + 1
          this%current = n
          this%fresh = .true.
          call omp_set_num_threads(n)
+         if (n > 1) then
+            !$omp parallel num_threads(n) private(rc)
+            rc = affinity_nudge(int(omp_get_thread_num(), c_int))
+            !$omp end parallel
+         end if
       end if
    end subroutine use_count
 end module contact2d_threads
