@@ -39,6 +39,7 @@ module contact2d_sweep
       real(wp) :: s(2, 2, -1:1, -1:1, 3, 3) = 0   !< the nine stencils (structured)
       real(wp) :: cv(0:7, -3:3, 3, 3) = 0         !< flat interior coefficients (structured)
       real(wp) :: cs(0:7, -3:3, 3, 3) = 0         !< the same for blocks that start at odd p
+      real(wp) :: e(2, 4, -1:1, 2, 3) = 0         !< end-node stencils (end_coefficients)
       !> the interior stencil has the symmetries of a rectangle (symmetric_coefficients): inside
       !> rows then use its nine distinct values, qs, on sums and differences of rows
       logical :: sym = .false.
@@ -79,6 +80,7 @@ contains
       call sweep_stencils(stiff%ke(:, :, 1), this%s)
       call flat_coefficients(this%s, this%cv)
       this%cs = this%cv([1, 0, 3, 2, 5, 4, 7, 6], :, :, :)
+      call end_coefficients(this%s, this%e)
       call symmetric_coefficients(this%s(:, :, :, :, 2, 2), this%sym, this%qs)
       if (this%sym) then
          this%nscr = max(omp_get_max_threads(), omp_get_num_procs())
@@ -149,7 +151,7 @@ contains
       real(wp), intent(in) :: ca, cb, dt    !< (1 - a dt/2)/(1 + a dt/2), dt/(1 + a dt/2) [s], dt [s]
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       if (this%structured) then
-         call sweep_grid(this%nx, this%ny, this%s, this%cv, this%cs, this%rmass, this%rminv, this%rclass, u, v, f, &
+         call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rminv, this%rclass, u, v, f, &
                          ca, cb, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, this%scr, &
                          this%nscr)
       else
@@ -157,10 +159,10 @@ contains
       end if
    end subroutine sweep_step
 
-   subroutine sweep_grid(nx, ny, s, cv, cs, rmass, rminv, rclass, u, v, f, ca, cb, dt, w, partial, par, sym, qs, &
+   subroutine sweep_grid(nx, ny, e, cv, cs, rmass, rminv, rclass, u, v, f, ca, cb, dt, w, partial, par, sym, qs, &
                          scr, nscr)
       integer, intent(in) :: nx, ny
-      real(wp), intent(in) :: s(2, 2, -1:1, -1:1, 3, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
+      real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
       real(wp), intent(in) :: rmass(:, :), rminv(:, :)
       integer, intent(in) :: rclass(0:ny)
       real(wp), intent(in) :: u(2, 0:nx, 0:ny)
@@ -178,16 +180,12 @@ contains
          rt = row_type(j, ny)
          if (sym .and. rt == 2) then
             t = omp_get_thread_num()
-            call end_node(nx, ny, s, 0, j, 1, rt, u, f)
-            call end_node(nx, ny, s, nx, j, 3, rt, u, f)
-            call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), f(1, 0, j), qs, &
+            call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), f(1, 0, j), qs, e(:, :, :, :, rt), &
                               scr(:, 1, t), scr(:, 2, t), v(1, 0, j), rmass(:, rclass(j)), rminv(:, rclass(j)), &
                               ca, cb, dt, w(1, 0, j), partial(:, j))
          else
             call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
-                          cv(:, :, :, rt), cs(:, :, :, rt))
-            call end_node(nx, ny, s, 0, j, 1, rt, u, f)
-            call end_node(nx, ny, s, nx, j, 3, rt, u, f)
+                          cv(:, :, :, rt), cs(:, :, :, rt), e(:, :, :, :, rt))
             call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rminv(:, rclass(j)), &
                             ca, cb, dt, w(1, 0, j), partial(:, j))
          end if
@@ -236,15 +234,18 @@ contains
 
    !> K u on the interior nodes of one grid row as flat arrays of interleaved (x, y) values
    !> (n = 2 (nx + 1)).
-   subroutine grid_row(n, um, u0, up, f, cv, c)
+   subroutine grid_row(n, um, u0, up, f, cv, c, e)
       integer, intent(in) :: n
       real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1)
+      real(wp), intent(in) :: e(2, 4, -1:1, 2)   !< end-node stencils of this row type
       real(wp), intent(in) :: cv(0:7, -3:3, 3)
       real(wp), intent(in) :: c(0:7, -3:3, 3)   !< cv for blocks that start at odd p (a y output)
       real(wp), intent(inout) :: f(0:n - 1)
       integer :: b, l, p, nb
       real(wp) :: sm, s0, sp
-      if (n < 6) return   ! one column of elements: no interior node (the end nodes follow)
+      f(0:1) = end_node(e(:, :, :, 1), um(0:3), u0(0:3), up(0:3))
+      f(n - 2:n - 1) = end_node(e(:, :, :, 2), um(n - 4:n - 1), u0(n - 4:n - 1), up(n - 4:n - 1))
+      if (n < 6) return   ! one column of elements: no interior node
       ! outputs p = 2 .. n - 3 (the interior nodes); u_r(p + o) must stay within 0 .. n - 1, so
       ! the first (x, offset -3) and the last (y, offset +3) output leave out the term whose
       ! coefficient is zero; the others go by blocks of eight, then one by one
@@ -297,9 +298,10 @@ contains
    !> multiply-adds and 9 loads per output instead of 21 and 21. Blocks of four outputs (one
    !> 256-bit vector; four lanes of partial sums), so that coefficients and sums stay in
    !> registers. db has three entries either side of the row, zero (set once at set-up).
-   subroutine grid_row_sym(n, um, u0, up, f, q, sb, db, v, m, minv, ca, cb, dt, w, part)
+   subroutine grid_row_sym(n, um, u0, up, f, q, e, sb, db, v, m, minv, ca, cb, dt, w, part)
       integer, intent(in) :: n
       real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 6)
+      real(wp), intent(in) :: e(2, 4, -1:1, 2)   !< end-node stencils of this row type
       real(wp), intent(inout) :: f(0:n - 1), sb(0:n + 5), db(-3:n + 2)
       real(wp), intent(in) :: m(0:n - 1), minv(0:n - 1), ca, cb, dt
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
@@ -307,6 +309,8 @@ contains
       integer :: b, l, p, nb
       real(wp) :: fp, vo, vs, wn, ek4(0:3), ed4(0:3), es4(0:3), ea4(0:3)
       part = 0
+      f(0:1) = end_node(e(:, :, :, 1), um(0:3), u0(0:3), up(0:3))
+      f(n - 2:n - 1) = end_node(e(:, :, :, 2), um(n - 4:n - 1), u0(n - 4:n - 1), up(n - 4:n - 1))
       if (n >= 6) then   ! else one column of elements: no interior node
          !$omp simd
          do p = 0, n - 1
@@ -344,7 +348,7 @@ contains
                     + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
                    + (q(l, 5)*(db(p + 3) - db(p - 1)) + q(l, 6)*(db(p + 1) - db(p - 3)))
          end do
-         ! the outputs left over: the end nodes (K u by the caller) and those after the blocks
+         ! the outputs left over: the end nodes (K u above) and those after the blocks
          call range_update(0, 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
          call range_update(2 + 4*nb, n - 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
          do l = 0, 3
@@ -416,27 +420,37 @@ contains
       end do
    end subroutine flat_coefficients
 
-   !> K u at the end node (i, j) of a grid row, column type ct and row type rt, bounds checked.
-   subroutine end_node(nx, ny, s, i, j, ct, rt, u, f)
-      integer, intent(in) :: nx, ny, i, j, ct, rt
+   !> The end-node stencils of end_node: e(c, :, dj, side, rt) are the coefficients of output c
+   !> (x, y) of the low (side 1, i = 0) or high (side 2, i = nx) end node of a row of type rt on
+   !> the four values (x, y of the column i0, x, y of i0 + 1; i0 = 0 or nx - 1) of row j + dj.
+   pure subroutine end_coefficients(s, e)
       real(wp), intent(in) :: s(2, 2, -1:1, -1:1, 3, 3)
-      real(wp), intent(in) :: u(2, 0:nx, 0:ny)
-      real(wp), intent(inout) :: f(2, 0:nx, 0:ny)
-      integer :: di, dj, ii, jj
-      real(wp) :: gx, gy
-      gx = 0
-      gy = 0
-      do dj = -1, 1
-         jj = j + dj
-         if (jj < 0 .or. jj > ny) cycle
-         do di = -1, 1
-            ii = i + di
-            if (ii < 0 .or. ii > nx) cycle
-            gx = gx + s(1, 1, di, dj, ct, rt)*u(1, ii, jj) + s(1, 2, di, dj, ct, rt)*u(2, ii, jj)
-            gy = gy + s(2, 1, di, dj, ct, rt)*u(1, ii, jj) + s(2, 2, di, dj, ct, rt)*u(2, ii, jj)
+      real(wp), intent(out) :: e(2, 4, -1:1, 2, 3)
+      integer :: rt, dj, side, c, di0, ct
+      do rt = 1, 3
+         do side = 1, 2
+            ct = merge(1, 3, side == 1)
+            di0 = merge(0, -1, side == 1)
+            do dj = -1, 1
+               do c = 1, 2
+                  e(c, :, dj, side, rt) = [s(c, 1, di0, dj, ct, rt), s(c, 2, di0, dj, ct, rt), &
+                                           s(c, 1, di0 + 1, dj, ct, rt), s(c, 2, di0 + 1, dj, ct, rt)]
+               end do
+            end do
          end do
       end do
-      f(1, i, j) = gx
-      f(2, i, j) = gy
-   end subroutine end_node
+   end subroutine end_coefficients
+
+   !> K u at an end node of a grid row from the four values (x, y of two columns) at its end of
+   !> rows j - 1, j, j + 1 (a, b, c) and its end-node stencil (end_coefficients; the blocks of
+   !> missing rows are zero, adding nothing), in the order of the full stencil (dj, then di); x
+   !> and y outputs side by side.
+   pure function end_node(e, a, b, c) result(g)
+      real(wp), intent(in) :: e(2, 4, -1:1), a(4), b(4), c(4)
+      real(wp) :: g(2)
+      g = 0
+      g = g + e(:, 1, -1)*a(1) + e(:, 2, -1)*a(2) + e(:, 3, -1)*a(3) + e(:, 4, -1)*a(4)
+      g = g + e(:, 1, 0)*b(1) + e(:, 2, 0)*b(2) + e(:, 3, 0)*b(3) + e(:, 4, 0)*b(4)
+      g = g + e(:, 1, 1)*c(1) + e(:, 2, 1)*c(2) + e(:, 3, 1)*c(3) + e(:, 4, 1)*c(4)
+   end function end_node
 end module contact2d_sweep
