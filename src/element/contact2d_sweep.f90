@@ -5,6 +5,9 @@
 !>    v* = ca v^(n-1/2) - cb M^-1 K u^n,   u~ = u^n + dt v*   (v overwritten by v*),
 !>    partial = (sum m v*^2, sum m ((v* + v^(n-1/2))/2)^2, sum u~ . K u^n, sum m (v* - v^(n-1/2))^2).
 !>
+!> The grid rows of structured meshes leave the second sum zero: the caller has it from the
+!> others and sum m (v^(n-1/2))^2, (a + b)^2 = 2 a^2 + 2 b^2 - (a - b)^2 (contact2d_explicit).
+!>
 !> v* is v^(n+1/2) wherever nothing changes u~ after the sweep; the caller corrects the velocity
 !> and these sums at the loaded, prescribed and contact dofs (contact2d_explicit).
 !>
@@ -43,12 +46,15 @@ module contact2d_sweep
       !> the interior stencil has the symmetries of a rectangle (symmetric_coefficients): inside
       !> rows then use its nine distinct values, qs, on sums and differences of rows
       logical :: sym = .false.
-      real(wp) :: qs(0:7, 6) = 0
-      !> per thread, the sum and difference rows of grid_row_sym, (0:2 (nx + 1) + 5, 2, 0:nscr - 1)
+      real(wp) :: qs(0:7, 5) = 0
+      !> per thread, the sum and difference rows of grid_row_sym, (0:2 (nx + 1) - 1, 2, 0:nscr - 1)
       real(wp), allocatable :: scr(:, :, :)
       integer :: nscr = 0
       !> per-dof masses and inverses of each class of grid row, (2 (nx + 1), nclass) [t], [1/t]
       real(wp), allocatable :: rmass(:, :), rminv(:, :)
+      !> cb rminv for the cb of cb_last (formed again when cb changes: the damping) [s/t]
+      real(wp), allocatable :: rcbm(:, :)
+      real(wp) :: cb_last = -1
       integer, allocatable :: rclass(:)           !< class of each grid row (0:ny)
       type(rows_t) :: rows                        !< block rows and masses (general meshes)
       real(wp), allocatable :: partial(:, :)      !< sums of the last sweep (4, parts)
@@ -84,8 +90,7 @@ contains
       call symmetric_coefficients(this%s(:, :, :, :, 2, 2), this%sym, this%qs)
       if (this%sym) then
          this%nscr = max(omp_get_max_threads(), omp_get_num_procs())
-         ! (the difference row has three zeros either side: see grid_row_sym)
-         allocate (this%scr(0:n + 5, 2, 0:this%nscr - 1))
+         allocate (this%scr(0:n - 1, 2, 0:this%nscr - 1))
          this%scr = 0
       end if
       ! per-dof masses of every row; the class of row j is its row type (1 bottom, 2 inside, 3 top)
@@ -106,6 +111,8 @@ contains
          this%rclass = [(j + 1, j=0, ny)]
       end if
       this%rminv = 1/this%rmass
+      this%rcbm = this%rminv
+      this%cb_last = -1
       allocate (this%partial(4, ny + 1))
    end subroutine sweep_init
 
@@ -151,26 +158,31 @@ contains
       real(wp), intent(in) :: ca, cb, dt    !< (1 - a dt/2)/(1 + a dt/2), dt/(1 + a dt/2) [s], dt [s]
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       if (this%structured) then
-         call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rminv, this%rclass, u, v, f, &
-                         ca, cb, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, this%scr, &
+         ! cb M^-1 per class of row, formed once per value of cb: the same bits as cb*minv(p)*f(p)
+         if (cb /= this%cb_last) then
+            this%rcbm = cb*this%rminv
+            this%cb_last = cb
+         end if
+         call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, u, v, f, &
+                         ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, this%scr, &
                          this%nscr)
       else
          call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial)
       end if
    end subroutine sweep_step
 
-   subroutine sweep_grid(nx, ny, e, cv, cs, rmass, rminv, rclass, u, v, f, ca, cb, dt, w, partial, par, sym, qs, &
+   subroutine sweep_grid(nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, par, sym, qs, &
                          scr, nscr)
       integer, intent(in) :: nx, ny
       real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
-      real(wp), intent(in) :: rmass(:, :), rminv(:, :)
+      real(wp), intent(in) :: rmass(:, :), rcbm(:, :)
       integer, intent(in) :: rclass(0:ny)
       real(wp), intent(in) :: u(2, 0:nx, 0:ny)
       real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
-      real(wp), intent(in) :: ca, cb, dt
+      real(wp), intent(in) :: ca, dt
       logical, intent(in) :: par, sym
       real(wp), intent(inout) :: partial(4, 0:ny)
-      real(wp), intent(in) :: qs(0:7, 6)
+      real(wp), intent(in) :: qs(0:7, 5)
       integer, intent(in) :: nscr
       real(wp), intent(inout) :: scr(0:, :, 0:)
       integer :: j, rt, t
@@ -181,56 +193,63 @@ contains
          if (sym .and. rt == 2) then
             t = omp_get_thread_num()
             call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), f(1, 0, j), qs, e(:, :, :, :, rt), &
-                              scr(:, 1, t), scr(:, 2, t), v(1, 0, j), rmass(:, rclass(j)), rminv(:, rclass(j)), &
-                              ca, cb, dt, w(1, 0, j), partial(:, j))
+                              scr(:, 1, t), scr(:, 2, t), v(1, 0, j), rmass(:, rclass(j)), rcbm(:, rclass(j)), &
+                              ca, dt, w(1, 0, j), partial(:, j))
          else
             call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
                           cv(:, :, :, rt), cs(:, :, :, rt), e(:, :, :, :, rt))
-            call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rminv(:, rclass(j)), &
-                            ca, cb, dt, w(1, 0, j), partial(:, j))
+            call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rcbm(:, rclass(j)), &
+                            ca, dt, w(1, 0, j), partial(:, j))
          end if
       end do
       !$omp end parallel do
    end subroutine sweep_grid
 
    !> The predictor and the energy sums on one grid row as flat arrays of interleaved (x, y)
-   !> values, right after its K u (the row is in cache).
-   subroutine row_update(n, u0, v, f, m, minv, ca, cb, dt, w, part)
+   !> values, right after its K u (the row is in cache); cbm = cb M^-1 of the row.
+   subroutine row_update(n, u0, v, f, m, cbm, ca, dt, w, part)
       integer, intent(in) :: n
-      real(wp), intent(in) :: u0(0:n - 1), f(0:n - 1), m(0:n - 1), minv(0:n - 1), ca, cb, dt
+      real(wp), intent(in) :: u0(0:n - 1), f(0:n - 1), m(0:n - 1), cbm(0:n - 1), ca, dt
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
-      part = 0
-      call range_update(0, n - 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
-      part(2) = 0.25_wp*part(2)
-   end subroutine row_update
-
-   !> The same on the outputs p0 .. p1 only, added to part, whose vbar sum lacks the factor 1/4.
-   subroutine range_update(p0, p1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
-      integer, intent(in) :: p0, p1, n
-      real(wp), intent(in) :: u0(0:n - 1), f(0:n - 1), m(0:n - 1), minv(0:n - 1), ca, cb, dt
-      real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
-      real(wp), intent(inout) :: part(4)
       integer :: p
-      real(wp) :: vo, vs, wn, ek, ed, es, ea
+      real(wp) :: vo, vs, wn, ek, es, ea
       ek = 0
-      ed = 0
       es = 0
       ea = 0
-      !$omp simd private(vo, vs, wn) reduction(+:ek, ed, es, ea)
-      do p = p0, p1
+      !$omp simd private(vo, vs, wn) reduction(+:ek, es, ea)
+      do p = 0, n - 1
          vo = v(p)
-         vs = ca*vo - cb*minv(p)*f(p)
+         vs = ca*vo - cbm(p)*f(p)
          wn = u0(p) + dt*vs
          ek = ek + m(p)*vs*vs
-         ed = ed + m(p)*(vs + vo)**2
          es = es + wn*f(p)
          ea = ea + m(p)*(vs - vo)**2
          v(p) = vs
          w(p) = wn
       end do
-      part = part + [ek, ed, es, ea]
-   end subroutine range_update
+      part = [ek, 0.0_wp, es, ea]
+   end subroutine row_update
+
+   !> The same on the few outputs p0 .. p1 of a row left over by grid_row_sym's blocks (no
+   !> vector set-up), added to ek, es, ea.
+   subroutine tail_update(p0, p1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
+      integer, intent(in) :: p0, p1, n
+      real(wp), intent(in) :: u0(0:n - 1), f(0:n - 1), m(0:n - 1), cbm(0:n - 1), ca, dt
+      real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1), ek, es, ea
+      integer :: p
+      real(wp) :: vo, vs, wn
+      do p = p0, p1
+         vo = v(p)
+         vs = ca*vo - cbm(p)*f(p)
+         wn = u0(p) + dt*vs
+         ek = ek + m(p)*vs*vs
+         es = es + wn*f(p)
+         ea = ea + m(p)*(vs - vo)**2
+         v(p) = vs
+         w(p) = wn
+      end do
+   end subroutine tail_update
 
    !> K u on the interior nodes of one grid row as flat arrays of interleaved (x, y) values
    !> (n = 2 (nx + 1)).
@@ -294,31 +313,35 @@ contains
    !> predictor and the energy sums. With the row sum S = um + up and difference D = up - um,
    !>    f(p) = A0 u0(p) + A2 (u0(p - 2) + u0(p + 2)) + B0 S(p) + B2 (S(p - 2) + S(p + 2))
    !>           + CX (D(p + 3) - D(p - 1)) + CY (D(p + 1) - D(p - 3)),
-   !> coefficients by the parity of p (x or y output; CY = 0 for x, CX = 0 for y): 8
-   !> multiply-adds and 9 loads per output instead of 21 and 21. Blocks of four outputs (one
-   !> 256-bit vector; four lanes of partial sums), so that coefficients and sums stay in
-   !> registers. db has three entries either side of the row, zero (set once at set-up).
-   subroutine grid_row_sym(n, um, u0, up, f, q, e, sb, db, v, m, minv, ca, cb, dt, w, part)
+   !> coefficients by the parity of p (x or y output; CY = 0 for x, CX = 0 for y, CX = CY = C
+   !> otherwise). The difference row is kept with x and y swapped, E(p) = D(p xor 1), so that the
+   !> last term is C (E(p + 2) - E(p - 2)) on either parity: 6 multiply-adds and 8 loads per
+   !> output instead of 21 and 21. Blocks of four outputs (one 256-bit vector; four lanes of
+   !> partial sums), so that coefficients and sums stay in registers. cbm = cb M^-1 of the row.
+   subroutine grid_row_sym(n, um, u0, up, f, q, e, sb, eb, v, m, cbm, ca, dt, w, part)
       integer, intent(in) :: n
-      real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 6)
+      real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 5)
       real(wp), intent(in) :: e(2, 4, -1:1, 2)   !< end-node stencils of this row type
-      real(wp), intent(inout) :: f(0:n - 1), sb(0:n + 5), db(-3:n + 2)
-      real(wp), intent(in) :: m(0:n - 1), minv(0:n - 1), ca, cb, dt
+      real(wp), intent(inout) :: f(0:n - 1), sb(0:n - 1), eb(0:n - 1)
+      real(wp), intent(in) :: m(0:n - 1), cbm(0:n - 1), ca, dt
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
-      integer :: b, l, p, nb
-      real(wp) :: fp, vo, vs, wn, ek4(0:3), ed4(0:3), es4(0:3), ea4(0:3)
-      part = 0
+      integer :: b, i, l, p, nb
+      real(wp) :: fp, vo, vs, wn, ek, es, ea, ek4(0:3), es4(0:3), ea4(0:3)
       f(0:1) = end_node(e(:, :, :, 1), um(0:3), u0(0:3), up(0:3))
       f(n - 2:n - 1) = end_node(e(:, :, :, 2), um(n - 4:n - 1), u0(n - 4:n - 1), up(n - 4:n - 1))
+      ek = 0
+      es = 0
+      ea = 0
       if (n >= 6) then   ! else one column of elements: no interior node
          !$omp simd
-         do p = 0, n - 1
-            sb(p) = um(p) + up(p)
-            db(p) = up(p) - um(p)
+         do i = 0, n/2 - 1
+            sb(2*i) = um(2*i) + up(2*i)
+            sb(2*i + 1) = um(2*i + 1) + up(2*i + 1)
+            eb(2*i) = up(2*i + 1) - um(2*i + 1)
+            eb(2*i + 1) = up(2*i) - um(2*i)
          end do
          ek4 = 0
-         ed4 = 0
          es4 = 0
          ea4 = 0
          ! outputs p = 2 .. n - 3 by blocks of four (lane l has the parity of l)
@@ -329,13 +352,12 @@ contains
                p = 2 + 4*b + l
                fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
                      + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
-                    + (q(l, 5)*(db(p + 3) - db(p - 1)) + q(l, 6)*(db(p + 1) - db(p - 3)))
+                    + q(l, 5)*(eb(p + 2) - eb(p - 2))
                f(p) = fp
                vo = v(p)
-               vs = ca*vo - cb*minv(p)*fp
+               vs = ca*vo - cbm(p)*fp
                wn = u0(p) + dt*vs
                ek4(l) = ek4(l) + m(p)*vs*vs
-               ed4(l) = ed4(l) + m(p)*(vs + vo)**2
                es4(l) = es4(l) + wn*fp
                ea4(l) = ea4(l) + m(p)*(vs - vo)**2
                v(p) = vs
@@ -346,30 +368,32 @@ contains
             l = mod(p, 2)
             f(p) = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
                     + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
-                   + (q(l, 5)*(db(p + 3) - db(p - 1)) + q(l, 6)*(db(p + 1) - db(p - 3)))
+                   + q(l, 5)*(eb(p + 2) - eb(p - 2))
+         end do
+         do l = 0, 3
+            ek = ek + ek4(l)
+            es = es + es4(l)
+            ea = ea + ea4(l)
          end do
          ! the outputs left over: the end nodes (K u above) and those after the blocks
-         call range_update(0, 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
-         call range_update(2 + 4*nb, n - 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
-         do l = 0, 3
-            part = part + [ek4(l), ed4(l), es4(l), ea4(l)]
-         end do
+         call tail_update(0, 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
+         call tail_update(2 + 4*nb, n - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
       else
-         call range_update(0, n - 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
+         call tail_update(0, n - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
       end if
-      part(2) = 0.25_wp*part(2)
+      part = [ek, 0.0_wp, es, ea]
    end subroutine grid_row_sym
 
    !> The interior stencil s2 = s(:, :, :, :, 2, 2) of a mesh of equal rectangles aligned with
    !> the axes is even in both directions in its xx and yy blocks and odd in both in its xy and
    !> yx blocks, which are equal: nine values (a00, a10, a01, a11 of xx, the same of yy, c).
    !> ok if s2 has these symmetries to 1e-12 of its largest entry; q then holds, per lane of
-   !> eight flat outputs (even lanes x, odd lanes y), A0, A2, B0, B2, CX, CY of grid_row_sym,
+   !> eight flat outputs (even lanes x, odd lanes y), A0, A2, B0, B2, C of grid_row_sym,
    !> each the mean of the entries it stands for.
    pure subroutine symmetric_coefficients(s2, ok, q)
       real(wp), intent(in) :: s2(2, 2, -1:1, -1:1)
       logical, intent(out) :: ok
-      real(wp), intent(out) :: q(0:7, 6)
+      real(wp), intent(out) :: q(0:7, 5)
       real(wp) :: r(2, 2, -1:1, -1:1), a(0:1, 0:1, 2), c
       integer :: k, di, dj
       do k = 1, 2
@@ -390,8 +414,8 @@ contains
       end do
       ok = maxval(abs(r - s2)) <= 1.0e-12_wp*maxval(abs(s2))
       do k = 0, 7, 2
-         q(k, :) = [a(0, 0, 1), a(1, 0, 1), a(0, 1, 1), a(1, 1, 1), c, 0.0_wp]
-         q(k + 1, :) = [a(0, 0, 2), a(1, 0, 2), a(0, 1, 2), a(1, 1, 2), 0.0_wp, c]
+         q(k, :) = [a(0, 0, 1), a(1, 0, 1), a(0, 1, 1), a(1, 1, 1), c]
+         q(k + 1, :) = [a(0, 0, 2), a(1, 0, 2), a(0, 1, 2), a(1, 1, 2), c]
       end do
    end subroutine symmetric_coefficients
 

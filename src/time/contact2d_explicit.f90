@@ -53,8 +53,9 @@ module contact2d_explicit
       !> dofs whose u~ changes after the sweep (loads, prescribed, contact nodes), as indices of
       !> the flattened (2 nnode) arrays, their nodes, and their v^(n-1/2), v* and u~ of the
       !> current step; set up by the first advance
-      integer, allocatable :: sdof(:), snode(:)
+      integer, allocatable :: sdof(:)
       real(wp), allocatable :: s_vold(:), s_vstar(:), s_wstar(:)
+      real(wp), allocatable :: s_mass(:)   !< the mass of each listed dof [t]
       integer :: s_ncontact = -1           !< contact nodes when sdof was built
       real(wp), allocatable :: fint(:, :)  !< K u^n of the last step [N]
       real(wp), allocatable :: fext(:, :)  !< f_ext(t_n) of the last step [N]
@@ -76,6 +77,9 @@ module contact2d_explicit
       real(wp) :: work_in = 0              !< sum of |external work increments|
       real(wp) :: damping_dissipation = 0
       real(wp) :: initial_kinetic = 0      !< 1/2 v^(-1/2) M v^(-1/2), energy put in at t = 0 (issue 12)
+      !> sum m (v^(n-1/2))^2 (twice the kinetic energy of the last step; formed again from v at
+      !> the start of every advance, so that a velocity set between calls counts)
+      real(wp) :: vsum = 0
       logical :: blown_up = .false.
       !> sum m (v^(n+1/2) - v^(n-1/2))^2 / sum m (v^(n+1/2))^2 of the last step: close to 4
       !> for a mode that changes sign every step (the one that grows when dt is too long)
@@ -157,6 +161,7 @@ contains
       ! set-up, outside the step loop: the dofs that change after the sweep
       if (.not. allocated(this%sdof) .or. this%s_ncontact /= merge(contact%nc, 0, contact%active)) &
          call special_dofs(this, load, contact)
+      this%vsum = mass_sum(2*this%nnode, this%mdof, this%v)
       dt = this%dt
       do k = 1, nsteps
          ! 1-2. internal force at u^n and, fused with it, the predictor without the loads:
@@ -216,7 +221,7 @@ contains
          this%work_in = this%work_in + abs(work)
          ! 4b. velocities and energies: v^(n+1/2) = v* but at the changed dofs, where it is
          !     (u^(n+1) - u^n)/dt and the sums of the sweep are corrected (in a fixed order)
-         call special_correct(size(this%sdof), this%sdof, this%snode, this%mass, this%u, this%unew, this%fint, dt, &
+         call special_correct(size(this%sdof), this%sdof, this%s_mass, this%u, this%unew, this%fint, dt, &
                               this%s_vold, this%s_vstar, this%s_wstar, this%v, corr)
          call add_energies(this, this%sweep%partial, corr, this%alpha, dt)
          ! u^(n+1) becomes u (the arrays are swapped, not copied)
@@ -263,15 +268,15 @@ contains
          this%s_ncontact = contact%nc
       end if
       n = count(mark)
-      if (allocated(this%sdof)) deallocate (this%sdof, this%snode, this%s_vold, this%s_vstar, this%s_wstar)
-      allocate (this%sdof(n), this%snode(n), this%s_vold(n), this%s_vstar(n), this%s_wstar(n))
+      if (allocated(this%sdof)) deallocate (this%sdof, this%s_vold, this%s_vstar, this%s_wstar, this%s_mass)
+      allocate (this%sdof(n), this%s_vold(n), this%s_vstar(n), this%s_wstar(n), this%s_mass(n))
       n = 0
       do node = 1, this%nnode
          do comp = 1, 2
             if (.not. mark(comp, node)) cycle
             n = n + 1
             this%sdof(n) = 2*(node - 1) + comp
-            this%snode(n) = node
+            this%s_mass(n) = this%mass(node)
          end do
       end do
    end subroutine special_dofs
@@ -302,28 +307,29 @@ contains
    end subroutine special_keep
 
    !> At the listed dofs, after the contact step: v^(n+1/2) = (u^(n+1) - u^n)/dt, and the changes
-   !> of the sweep's sums (m v^2, m vbar^2, u . K u, m dv^2) from v* and u~ to these values, in
-   !> list order.
-   subroutine special_correct(n, dof, node, mass, u, unew, fint, dt, vold, vstar, wstar, v, corr)
-      integer, intent(in) :: n, dof(n), node(n)
-      real(wp), intent(in) :: mass(*), u(*), unew(*), fint(*), dt, vold(n), vstar(n), wstar(n)
+   !> of the sweep's sums (m v^2, -, u . K u, m dv^2) from v* and u~ to these values, in list
+   !> order (a^2 - b^2 = (a - b)(a + b); the damping sum is not needed: add_energies).
+   subroutine special_correct(n, dof, mass, u, unew, fint, dt, vold, vstar, wstar, v, corr)
+      integer, intent(in) :: n, dof(n)
+      real(wp), intent(in) :: mass(n), u(*), unew(*), fint(*), dt, vold(n), vstar(n), wstar(n)
       real(wp), intent(inout) :: v(*)
       real(wp), intent(out) :: corr(4)
       integer :: q, d
-      real(wp) :: m, vo, vs, vn
-      corr = 0
+      real(wp) :: vs, vn, md, c1, c3, c4
+      c1 = 0
+      c3 = 0
+      c4 = 0
       do q = 1, n
          d = dof(q)
-         m = mass(node(q))
-         vo = vold(q)
          vs = vstar(q)
          vn = (unew(d) - u(d))/dt
-         corr(1) = corr(1) + m*(vn*vn - vs*vs)
-         corr(2) = corr(2) + m*((0.5_wp*(vn + vo))**2 - (0.5_wp*(vs + vo))**2)
-         corr(3) = corr(3) + (unew(d) - wstar(q))*fint(d)
-         corr(4) = corr(4) + m*((vn - vo)**2 - (vs - vo)**2)
+         md = mass(q)*(vn - vs)
+         c1 = c1 + md*(vn + vs)
+         c3 = c3 + (unew(d) - wstar(q))*fint(d)
+         c4 = c4 + md*((vn + vs) - 2*vold(q))
          v(d) = vn
       end do
+      corr = [c1, 0.0_wp, c3, c4]
    end subroutine special_correct
 
 
@@ -366,27 +372,29 @@ contains
       this%guard_kin_rise = 0
    end subroutine explicit_set_dt
 
-   !> Energies of the step from the sweep's partial sums (m v^2, m vbar^2, u . K u, m dv^2), added
-   !> in order, and the corrections of the changed dofs.
+   !> Energies of the step from the sweep's partial sums (m v^2, -, u . K u, m dv^2), added in
+   !> order, and the corrections of the changed dofs. The damping sum m vbar^2 = m (v + vold)^2/4
+   !> follows from (a + b)^2 = 2 a^2 + 2 b^2 - (a - b)^2 with this%vsum = sum m vold^2: no
+   !> cancellation (all three terms are non-negative, the subtracted one the smallest when the
+   !> motion is smooth). this%vsum becomes sum m v^2 of this step.
    subroutine add_energies(this, partial, corr, alpha, dt)
       type(explicit_t), intent(inout) :: this
       real(wp), intent(in) :: partial(:, :), corr(4), alpha, dt
       real(wp) :: ekin, edamp, estrain, ealt
       integer :: b
       ekin = 0
-      edamp = 0
       estrain = 0
       ealt = 0
       do b = 1, size(partial, 2)
          ekin = ekin + partial(1, b)
-         edamp = edamp + partial(2, b)
          estrain = estrain + partial(3, b)
          ealt = ealt + partial(4, b)
       end do
       ekin = ekin + corr(1)
-      edamp = edamp + corr(2)
       estrain = estrain + corr(3)
       ealt = ealt + corr(4)
+      edamp = 0.5_wp*(ekin + this%vsum) - 0.25_wp*ealt
+      this%vsum = ekin
       ! (not merge: both of its arguments are evaluated, and 0/0 traps in Debug builds)
       if (ekin > 0) then
          this%alternating = ealt/ekin
@@ -398,6 +406,18 @@ contains
       this%strain = 0.5_wp*estrain
       this%damping_dissipation = this%damping_dissipation + alpha*dt*edamp
    end subroutine add_energies
+
+   !> sum m v^2 over the flattened dofs, in a fixed order (thread-independent bits).
+   real(wp) function mass_sum(ndof, mdof, v) result(t)
+      integer, intent(in) :: ndof
+      real(wp), intent(in) :: mdof(ndof), v(ndof)
+      integer :: i
+      t = 0
+      !$omp simd reduction(+:t)
+      do i = 1, ndof
+         t = t + mdof(i)*v(i)*v(i)
+      end do
+   end function mass_sum
 
    !> Automatic damping (dynamic relaxation, SPEC section 5): alpha = 2 omega_1, with omega_1^2
    !> the Rayleigh quotient of the free part du_f of the displacement increment since the last
