@@ -326,7 +326,7 @@ contains
       real(wp), intent(in) :: m(0:n - 1), cbm(0:n - 1), ca, dt
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
-      integer :: b, i, l, p, nb
+      integer :: b, l, p, nb
       real(wp) :: fp, vo, vs, wn, ek, es, ea, ek4(0:3), es4(0:3), ea4(0:3)
       f(0:1) = end_node(e(:, :, :, 1), um(0:3), u0(0:3), up(0:3))
       f(n - 2:n - 1) = end_node(e(:, :, :, 2), um(n - 4:n - 1), u0(n - 4:n - 1), up(n - 4:n - 1))
@@ -335,11 +335,11 @@ contains
       ea = 0
       if (n >= 6) then   ! else one column of elements: no interior node
          !$omp simd
-         do i = 0, n/2 - 1
-            sb(2*i) = um(2*i) + up(2*i)
-            sb(2*i + 1) = um(2*i + 1) + up(2*i + 1)
-            eb(2*i) = up(2*i + 1) - um(2*i + 1)
-            eb(2*i + 1) = up(2*i) - um(2*i)
+         do p = 0, n - 2, 2
+            sb(p) = um(p) + up(p)
+            sb(p + 1) = um(p + 1) + up(p + 1)
+            eb(p) = up(p + 1) - um(p + 1)
+            eb(p + 1) = up(p) - um(p)
          end do
          ek4 = 0
          es4 = 0
