@@ -171,9 +171,9 @@ contains
             this%rcbm = cb*this%rminv
             this%cb_last = cb
          end if
-         call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, this%requal, u, v, f, &
-                         ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, this%scr, &
-                         this%nscr)
+         call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, this%requal, &
+                         u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
+                         this%scr, this%nscr)
       else
          call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial)
       end if
@@ -183,9 +183,9 @@ contains
                          scr, nscr)
       integer, intent(in) :: nx, ny
       real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
-      real(wp), intent(in) :: rmass(:, :), rcbm(:, :)
+      real(wp), intent(in) :: rmass(0:2*nx + 1, *), rcbm(0:2*nx + 1, *)
       integer, intent(in) :: rclass(0:ny)
-      logical, intent(in) :: requal(:)
+      logical, intent(in) :: requal(*)
       real(wp), intent(in) :: u(2, 0:nx, 0:ny)
       real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
       real(wp), intent(in) :: ca, dt
@@ -193,7 +193,7 @@ contains
       real(wp), intent(inout) :: partial(4, 0:ny)
       real(wp), intent(in) :: qs(0:7, 5)
       integer, intent(in) :: nscr
-      real(wp), intent(inout) :: scr(0:, :, 0:)
+      real(wp), intent(inout) :: scr(0:2*nx + 1, 2, 0:nscr - 1)
       integer :: j, rt, t
       ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it)
       !$omp parallel do schedule(dynamic) if(par) private(rt, t) num_threads(max(1, min(omp_get_max_threads(), nscr)))
@@ -201,14 +201,15 @@ contains
          rt = row_type(j, ny)
          if (sym .and. rt == 2 .and. requal(rclass(j))) then
             t = omp_get_thread_num()
-            call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), f(1, 0, j), qs, e(:, :, :, :, rt), &
-                              scr(:, 1, t), scr(:, 2, t), v(1, 0, j), rmass(:, rclass(j)), rcbm(:, rclass(j)), &
-                              ca, dt, w(1, 0, j), partial(:, j))
+            ! (array elements for explicit-shape dummies: no descriptors)
+            call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), f(1, 0, j), qs, &
+                              e(1, 1, -1, 1, rt), scr(0, 1, t), scr(0, 2, t), v(1, 0, j), rmass(0, rclass(j)), &
+                              rcbm(0, rclass(j)), ca, dt, w(1, 0, j), partial(1, j))
          else
             call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
-                          cv(:, :, :, rt), cs(:, :, :, rt), e(:, :, :, :, rt))
-            call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rcbm(:, rclass(j)), &
-                            ca, dt, w(1, 0, j), partial(:, j))
+                          cv(0, -3, 1, rt), cs(0, -3, 1, rt), e(1, 1, -1, 1, rt))
+            call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(0, rclass(j)), rcbm(0, rclass(j)), &
+                            ca, dt, w(1, 0, j), partial(1, j))
          end if
       end do
       !$omp end parallel do
