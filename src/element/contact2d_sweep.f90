@@ -5,6 +5,10 @@
 !>    v* = ca v^(n-1/2) - cb M^-1 K u^n,   u~ = u^n + dt v*   (v overwritten by v*),
 !>    partial = (sum m v*^2, sum m ((v* + v^(n-1/2))/2)^2, sum u~ . K u^n, sum m (v* - v^(n-1/2))^2).
 !>
+!> With full = .false. the inside rows of structured meshes neither store K u at their interior
+!> nodes (sweep_t%kept: where it is always stored) nor form the third sum: the steps on which
+!> nobody reads them (contact2d_explicit).
+!>
 !> The grid rows of structured meshes leave the second sum zero: the caller has it from the
 !> others and sum m (v^(n-1/2))^2, (a + b)^2 = 2 a^2 + 2 b^2 - (a - b)^2 (contact2d_explicit).
 !>
@@ -64,6 +68,7 @@ module contact2d_sweep
    contains
       procedure :: init => sweep_init
       procedure :: step => sweep_step
+      procedure :: kept => sweep_kept
    end type sweep_t
 
 contains
@@ -157,7 +162,7 @@ contains
 
    !> One sweep: f = K u, v = v* = ca v - cb M^-1 f, w = u + dt v*, and the partial sums of
    !> this%partial (see the module header).
-   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w)
+   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w, full)
       class(sweep_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
@@ -165,6 +170,11 @@ contains
       real(wp), intent(inout) :: f(:, :)    !< K u^n out [N]
       real(wp), intent(in) :: ca, cb, dt    !< (1 - a dt/2)/(1 + a dt/2), dt/(1 + a dt/2) [s], dt [s]
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
+      !> K u at every node and the sum u~ . K u (default); else only where kept (module header)
+      logical, intent(in), optional :: full
+      logical :: all_out
+      all_out = .true.
+      if (present(full)) all_out = full
       if (this%structured) then
          ! cb M^-1 per class of row, formed once per value of cb: the same bits as cb*minv(p)*f(p)
          if (cb /= this%cb_last) then
@@ -173,14 +183,27 @@ contains
          end if
          call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, this%requal, &
                          u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
-                         this%scr, this%nscr)
+                         this%scr, this%nscr, all_out)
       else
          call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial)
       end if
    end subroutine sweep_step
 
+   !> Is K u at this node stored by every sweep, full or not (module header)? On structured
+   !> meshes the boundary nodes; on general meshes all.
+   pure logical function sweep_kept(this, node) result(yes)
+      class(sweep_t), intent(in) :: this
+      integer, intent(in) :: node
+      integer :: i, j
+      yes = .true.
+      if (.not. this%structured) return
+      i = mod(node - 1, this%nx + 1)
+      j = (node - 1)/(this%nx + 1)
+      yes = i == 0 .or. i == this%nx .or. j == 0 .or. j == this%ny
+   end function sweep_kept
+
    subroutine sweep_grid(nx, ny, e, cv, cs, rmass, rcbm, rclass, requal, u, v, f, ca, dt, w, partial, par, sym, qs, &
-                         scr, nscr)
+                         scr, nscr, full)
       integer, intent(in) :: nx, ny
       real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
       real(wp), intent(in) :: rmass(0:2*nx + 1, *), rcbm(0:2*nx + 1, *)
@@ -189,7 +212,7 @@ contains
       real(wp), intent(in) :: u(2, 0:nx, 0:ny)
       real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
       real(wp), intent(in) :: ca, dt
-      logical, intent(in) :: par, sym
+      logical, intent(in) :: par, sym, full
       real(wp), intent(inout) :: partial(4, 0:ny)
       real(wp), intent(in) :: qs(0:7, 5)
       integer, intent(in) :: nscr
@@ -204,7 +227,7 @@ contains
             ! (array elements for explicit-shape dummies: no descriptors)
             call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), f(1, 0, j), qs, &
                               e(1, 1, -1, 1, rt), scr(0, 1, t), scr(0, 2, t), v(1, 0, j), rmass(0, rclass(j)), &
-                              rcbm(0, rclass(j)), ca, dt, w(1, 0, j), partial(1, j))
+                              rcbm(0, rclass(j)), ca, dt, w(1, 0, j), partial(1, j), full)
          else
             call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
                           cv(0, -3, 1, rt), cs(0, -3, 1, rt), e(1, 1, -1, 1, rt))
@@ -330,7 +353,7 @@ contains
    !> partial sums), so that coefficients and sums stay in registers. cbm = cb M^-1 of the row;
    !> its interior nodes have one mass to round-off (sweep_t%requal): m(2) is taken out of the
    !> energy sums (the velocities use each node's own cbm).
-   subroutine grid_row_sym(n, um, u0, up, f, q, e, sb, eb, v, m, cbm, ca, dt, w, part)
+   subroutine grid_row_sym(n, um, u0, up, f, q, e, sb, eb, v, m, cbm, ca, dt, w, part, full)
       integer, intent(in) :: n
       real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 5)
       real(wp), intent(in) :: e(2, 4, -1:1, 2)   !< end-node stencils of this row type
@@ -338,6 +361,7 @@ contains
       real(wp), intent(in) :: m(0:n - 1), cbm(0:n - 1), ca, dt
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
+      logical, intent(in) :: full   !< store f and form the u~ . f sum at the interior outputs
       integer :: b, l, p, nb
       real(wp) :: fp, vo, vs, wn, ek, es, ea, ek4(0:3), es4(0:3), ea4(0:3)
       f(0:1) = end_node(e(:, :, :, 1), um(0:3), u0(0:3), up(0:3))
@@ -358,24 +382,43 @@ contains
          ea4 = 0
          ! outputs p = 2 .. n - 3 by blocks of four (lane l has the parity of l)
          nb = (n - 4)/4
-         do b = 0, nb - 1
-            !$omp simd private(p, fp, vo, vs, wn)
-            do l = 0, 3
-               p = 2 + 4*b + l
-               fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
-                     + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
-                    + q(l, 5)*(eb(p + 2) - eb(p - 2))
-               f(p) = fp
-               vo = v(p)
-               vs = ca*vo - cbm(p)*fp
-               wn = u0(p) + dt*vs
-               ek4(l) = ek4(l) + vs*vs
-               es4(l) = es4(l) + wn*fp
-               ea4(l) = ea4(l) + (vs - vo)**2
-               v(p) = vs
-               w(p) = wn
+         if (full) then
+            do b = 0, nb - 1
+               !$omp simd private(p, fp, vo, vs, wn)
+               do l = 0, 3
+                  p = 2 + 4*b + l
+                  fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
+                        + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
+                       + q(l, 5)*(eb(p + 2) - eb(p - 2))
+                  f(p) = fp
+                  vo = v(p)
+                  vs = ca*vo - cbm(p)*fp
+                  wn = u0(p) + dt*vs
+                  ek4(l) = ek4(l) + vs*vs
+                  es4(l) = es4(l) + wn*fp
+                  ea4(l) = ea4(l) + (vs - vo)**2
+                  v(p) = vs
+                  w(p) = wn
+               end do
             end do
-         end do
+         else
+            ! the same without f and the u~ . f sum
+            do b = 0, nb - 1
+               !$omp simd private(p, fp, vo, vs)
+               do l = 0, 3
+                  p = 2 + 4*b + l
+                  fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
+                        + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
+                       + q(l, 5)*(eb(p + 2) - eb(p - 2))
+                  vo = v(p)
+                  vs = ca*vo - cbm(p)*fp
+                  ek4(l) = ek4(l) + vs*vs
+                  ea4(l) = ea4(l) + (vs - vo)**2
+                  v(p) = vs
+                  w(p) = u0(p) + dt*vs
+               end do
+            end do
+         end if
          do p = 2 + 4*nb, n - 3
             l = mod(p, 2)
             f(p) = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
