@@ -96,11 +96,10 @@ contains
       this%cs = this%cv([1, 0, 3, 2, 5, 4, 7, 6], :, :, :)
       call end_coefficients(this%s, this%e)
       call symmetric_coefficients(this%s(:, :, :, :, 2, 2), this%sym, this%qs)
-      if (this%sym) then
-         this%nscr = max(omp_get_max_threads(), omp_get_num_procs())
-         allocate (this%scr(0:n - 1, 2, 0:this%nscr - 1))
-         this%scr = 0
-      end if
+      ! (allocated even when unused: it is passed to sweep_grid)
+      this%nscr = max(omp_get_max_threads(), omp_get_num_procs())
+      allocate (this%scr(0:n - 1, 2, 0:this%nscr - 1))
+      this%scr = 0
       ! per-dof masses of every row; the class of row j is its row type (1 bottom, 2 inside, 3 top)
       mrow = reshape(spread(stiff%mass, 1, 2), [n, ny + 1])
       allocate (this%rclass(0:ny))
@@ -206,9 +205,9 @@ contains
                          scr, nscr, full)
       integer, intent(in) :: nx, ny
       real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
-      real(wp), intent(in) :: rmass(0:2*nx + 1, *), rcbm(0:2*nx + 1, *)
+      real(wp), intent(in) :: rmass(:, :), rcbm(:, :)
       integer, intent(in) :: rclass(0:ny)
-      logical, intent(in) :: requal(*)
+      logical, intent(in) :: requal(:)
       real(wp), intent(in) :: u(2, 0:nx, 0:ny)
       real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
       real(wp), intent(in) :: ca, dt
@@ -216,7 +215,7 @@ contains
       real(wp), intent(inout) :: partial(4, 0:ny)
       real(wp), intent(in) :: qs(0:7, 5)
       integer, intent(in) :: nscr
-      real(wp), intent(inout) :: scr(0:2*nx + 1, 2, 0:nscr - 1)
+      real(wp), intent(inout) :: scr(0:, :, 0:)
       integer :: j, rt, t
       ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it)
       !$omp parallel do schedule(dynamic) if(par) private(rt, t) num_threads(max(1, min(omp_get_max_threads(), nscr)))
@@ -224,14 +223,13 @@ contains
          rt = row_type(j, ny)
          if (sym .and. rt == 2 .and. requal(rclass(j))) then
             t = omp_get_thread_num()
-            ! (array elements for explicit-shape dummies: no descriptors)
             call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), f(1, 0, j), qs, &
-                              e(1, 1, -1, 1, rt), scr(0, 1, t), scr(0, 2, t), v(1, 0, j), rmass(0, rclass(j)), &
-                              rcbm(0, rclass(j)), ca, dt, w(1, 0, j), partial(1, j), full)
+                              e(1, 1, -1, 1, rt), scr(:, 1, t), scr(:, 2, t), v(1, 0, j), rmass(:, rclass(j)), &
+                              rcbm(:, rclass(j)), ca, dt, w(1, 0, j), partial(1, j), full)
          else
             call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
                           cv(0, -3, 1, rt), cs(0, -3, 1, rt), e(1, 1, -1, 1, rt))
-            call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(0, rclass(j)), rcbm(0, rclass(j)), &
+            call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rcbm(:, rclass(j)), &
                             ca, dt, w(1, 0, j), partial(1, j))
          end if
       end do
@@ -261,7 +259,11 @@ contains
          v(p) = vs
          w(p) = wn
       end do
-      part = [ek, 0.0_wp, es, ea]
+      ! (element by element: an array constructor here allocates in Debug builds)
+      part(1) = ek
+      part(2) = 0
+      part(3) = es
+      part(4) = ea
    end subroutine row_update
 
    !> The same on the few outputs p0 .. p1 of a row left over by grid_row_sym's blocks (no
@@ -295,8 +297,9 @@ contains
       real(wp), intent(inout) :: f(0:n - 1)
       integer :: b, l, p, nb
       real(wp) :: sm, s0, sp
-      f(0:1) = end_node(e(:, :, :, 1), um(0:3), u0(0:3), up(0:3))
-      f(n - 2:n - 1) = end_node(e(:, :, :, 2), um(n - 4:n - 1), u0(n - 4:n - 1), up(n - 4:n - 1))
+      ! (array elements for the explicit-shape dummies: no temporaries)
+      call end_node(e(1, 1, -1, 1), um(0), u0(0), up(0), f(0))
+      call end_node(e(1, 1, -1, 2), um(n - 4), u0(n - 4), up(n - 4), f(n - 2))
       if (n < 6) return   ! one column of elements: no interior node
       ! outputs p = 2 .. n - 3 (the interior nodes); u_r(p + o) must stay within 0 .. n - 1, so
       ! the first (x, offset -3) and the last (y, offset +3) output leave out the term whose
@@ -364,8 +367,9 @@ contains
       logical, intent(in) :: full   !< store f and form the u~ . f sum at the interior outputs
       integer :: b, l, p, nb
       real(wp) :: fp, vo, vs, wn, ek, es, ea, ek4(0:3), es4(0:3), ea4(0:3)
-      f(0:1) = end_node(e(:, :, :, 1), um(0:3), u0(0:3), up(0:3))
-      f(n - 2:n - 1) = end_node(e(:, :, :, 2), um(n - 4:n - 1), u0(n - 4:n - 1), up(n - 4:n - 1))
+      ! (array elements for the explicit-shape dummies: no temporaries)
+      call end_node(e(1, 1, -1, 1), um(0), u0(0), up(0), f(0))
+      call end_node(e(1, 1, -1, 2), um(n - 4), u0(n - 4), up(n - 4), f(n - 2))
       ek = 0
       es = 0
       ea = 0
@@ -438,7 +442,11 @@ contains
       else
          call tail_update(0, n - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
       end if
-      part = [ek, 0.0_wp, es, ea]
+      ! (element by element: an array constructor here allocates in Debug builds)
+      part(1) = ek
+      part(2) = 0
+      part(3) = es
+      part(4) = ea
    end subroutine grid_row_sym
 
    !> The interior stencil s2 = s(:, :, :, :, 2, 2) of a mesh of equal rectangles aligned with
@@ -526,12 +534,12 @@ contains
    !> rows j - 1, j, j + 1 (a, b, c) and its end-node stencil (end_coefficients; the blocks of
    !> missing rows are zero, adding nothing), in the order of the full stencil (dj, then di); x
    !> and y outputs side by side.
-   pure function end_node(e, a, b, c) result(g)
+   pure subroutine end_node(e, a, b, c, g)
       real(wp), intent(in) :: e(2, 4, -1:1), a(4), b(4), c(4)
-      real(wp) :: g(2)
+      real(wp), intent(out) :: g(2)
       g = 0
       g = g + e(:, 1, -1)*a(1) + e(:, 2, -1)*a(2) + e(:, 3, -1)*a(3) + e(:, 4, -1)*a(4)
       g = g + e(:, 1, 0)*b(1) + e(:, 2, 0)*b(2) + e(:, 3, 0)*b(3) + e(:, 4, 0)*b(4)
       g = g + e(:, 1, 1)*c(1) + e(:, 2, 1)*c(2) + e(:, 3, 1)*c(3) + e(:, 4, 1)*c(4)
-   end function end_node
+   end subroutine end_node
 end module contact2d_sweep

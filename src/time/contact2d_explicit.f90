@@ -362,7 +362,10 @@ contains
          c4 = c4 + md*((vn + vs) - 2*vo)
          v(d) = vn
       end do
-      corr = [c1, 0.0_wp, c3, c4]
+      corr(1) = c1
+      corr(2) = 0
+      corr(3) = c3
+      corr(4) = c4
    end subroutine special_correct
 
 
