@@ -60,9 +60,6 @@ module contact2d_sweep
       real(wp), allocatable :: rcbm(:, :)
       real(wp) :: cb_last = -1
       integer, allocatable :: rclass(:)           !< class of each grid row (0:ny)
-      !> the interior nodes of the rows of each class have one mass to round-off (1e-13; element
-      !> masses from coordinates differ in the last bits): grid_row_sym takes it out of its sums
-      logical, allocatable :: requal(:)
       type(rows_t) :: rows                        !< block rows and masses (general meshes)
       real(wp), allocatable :: partial(:, :)      !< sums of the last sweep (4, parts)
    contains
@@ -119,11 +116,6 @@ contains
       end if
       this%rminv = 1/this%rmass
       this%rcbm = this%rminv
-      allocate (this%requal(size(this%rmass, 2)))
-      do j = 1, size(this%rmass, 2)
-         ! (dofs 2 .. n - 3 of the row)
-         this%requal(j) = all(abs(this%rmass(3:n - 2, j) - this%rmass(3, j)) <= 1.0e-13_wp*this%rmass(3, j))
-      end do
       this%cb_last = -1
       allocate (this%partial(4, ny + 1))
    end subroutine sweep_init
@@ -180,7 +172,7 @@ contains
             this%rcbm = cb*this%rminv
             this%cb_last = cb
          end if
-         call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, this%requal, &
+         call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, &
                          u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
                          this%scr, this%nscr, all_out)
       else
@@ -201,13 +193,12 @@ contains
       yes = i == 0 .or. i == this%nx .or. j == 0 .or. j == this%ny
    end function sweep_kept
 
-   subroutine sweep_grid(nx, ny, e, cv, cs, rmass, rcbm, rclass, requal, u, v, f, ca, dt, w, partial, par, sym, qs, &
+   subroutine sweep_grid(nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, par, sym, qs, &
                          scr, nscr, full)
       integer, intent(in) :: nx, ny
       real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
       real(wp), intent(in) :: rmass(:, :), rcbm(:, :)
       integer, intent(in) :: rclass(0:ny)
-      logical, intent(in) :: requal(:)
       real(wp), intent(in) :: u(2, 0:nx, 0:ny)
       real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
       real(wp), intent(in) :: ca, dt
@@ -221,7 +212,7 @@ contains
       !$omp parallel do schedule(dynamic) if(par) private(rt, t) num_threads(max(1, min(omp_get_max_threads(), nscr)))
       do j = 0, ny
          rt = row_type(j, ny)
-         if (sym .and. rt == 2 .and. requal(rclass(j))) then
+         if (sym .and. rt == 2) then
             t = omp_get_thread_num()
             call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), f(1, 0, j), qs, &
                               e(1, 1, -1, 1, rt), scr(:, 1, t), scr(:, 2, t), v(1, 0, j), rmass(:, rclass(j)), &
@@ -353,9 +344,7 @@ contains
    !> otherwise). The difference row is kept with x and y swapped, E(p) = D(p xor 1), so that the
    !> last term is C (E(p + 2) - E(p - 2)) on either parity: 6 multiply-adds and 8 loads per
    !> output instead of 21 and 21. Blocks of four outputs (one 256-bit vector; four lanes of
-   !> partial sums), so that coefficients and sums stay in registers. cbm = cb M^-1 of the row;
-   !> its interior nodes have one mass to round-off (sweep_t%requal): m(2) is taken out of the
-   !> energy sums (the velocities use each node's own cbm).
+   !> partial sums), so that coefficients and sums stay in registers. cbm = cb M^-1 of the row.
    subroutine grid_row_sym(n, um, u0, up, f, q, e, sb, eb, v, m, cbm, ca, dt, w, part, full)
       integer, intent(in) :: n
       real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 5)
@@ -398,9 +387,9 @@ contains
                   vo = v(p)
                   vs = ca*vo - cbm(p)*fp
                   wn = u0(p) + dt*vs
-                  ek4(l) = ek4(l) + vs*vs
+                  ek4(l) = ek4(l) + m(p)*vs*vs
                   es4(l) = es4(l) + wn*fp
-                  ea4(l) = ea4(l) + (vs - vo)**2
+                  ea4(l) = ea4(l) + m(p)*(vs - vo)**2
                   v(p) = vs
                   w(p) = wn
                end do
@@ -416,8 +405,8 @@ contains
                        + q(l, 5)*(eb(p + 2) - eb(p - 2))
                   vo = v(p)
                   vs = ca*vo - cbm(p)*fp
-                  ek4(l) = ek4(l) + vs*vs
-                  ea4(l) = ea4(l) + (vs - vo)**2
+                  ek4(l) = ek4(l) + m(p)*vs*vs
+                  ea4(l) = ea4(l) + m(p)*(vs - vo)**2
                   v(p) = vs
                   w(p) = u0(p) + dt*vs
                end do
@@ -434,8 +423,6 @@ contains
             es = es + es4(l)
             ea = ea + ea4(l)
          end do
-         ek = m(2)*ek
-         ea = m(2)*ea
          ! the outputs left over: the end nodes (K u above) and those after the blocks
          call tail_update(0, 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
          call tail_update(2 + 4*nb, n - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
