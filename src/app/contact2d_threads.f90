@@ -20,6 +20,10 @@ module contact2d_threads
    !> against the count in use that ends the probe at once.
    integer, parameter :: probe_every = 40, probe_every_max = 640, probe_chunks = 3
    real(wp), parameter :: weight = 0.3_wp, probe_abort = 1.5_wp
+   !> The team is left for one thread at once when its running estimate becomes this much slower
+   !> than one thread's: a probe lasts a few ms, less than a scheduler time slice, so a team can
+   !> look fast in its probe on a core another process shares and be slow afterwards.
+   real(wp), parameter :: team_back = 1.25_wp
 
    interface
       !> Move the calling thread to the k-th CPU allowed to it, then allow them all again
@@ -103,6 +107,13 @@ contains
          else
             this%interval = probe_every
          end if
+         this%chunks = 0
+         return
+      end if
+      ! the team slower than one thread: back to one thread now (never wait for the next probe)
+      if (this%current == this%nmax .and. this%per_step(1) > 0 .and. &
+          this%per_step(2) > team_back*this%per_step(1)) then
+         call use_count(this, 1)
          this%chunks = 0
          return
       end if
