@@ -217,7 +217,10 @@ contains
          do l = 1, 4
             p(l) = (p(l) + q(l)) + s(l)
          end do
-         f(2*r - 1:2*r) = p(1:2) + p(3:4)
+         !$omp simd simdlen(2)
+         do l = 1, 2
+            f(2*r - 2 + l) = p(l) + p(l + 2)
+         end do
       end do
       ! the blocks of rows longer than ell_width beyond the ninth (rare), added in order
       do k = xstart(r0), xstart(r1 + 1) - 1
