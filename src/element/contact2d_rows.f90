@@ -190,6 +190,7 @@ contains
       integer :: d, r, i, k, l
       integer(i8) :: j
       real(wp) :: vo, vs, wn, ek, ed, es, ea, p(4), q(4), s(4)
+      !GCC$ unroll 4
       do r = r0, r1
          ! blocks 1, 4, 7 into p; 2, 5, 8 into q; 3, 6, 9 into s (ell_width = 9), each block one
          ! 4-wide multiply-add
