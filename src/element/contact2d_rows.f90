@@ -46,10 +46,10 @@ module contact2d_rows
       integer, allocatable :: xrow(:)           !< remainder: row of each extra block
       real(wp), allocatable :: xblk(:, :)       !< remainder: blocks (4, nextra), as blk [N/mm]
       real(wp), allocatable :: mdof(:), minvdof(:)   !< mass and 1/mass per dof (2 nnode) [t], [1/t]
-      !> scratch of the sweep: (ux, uy, uy, ux) of each node from ud(ud0 + 1) on, ud0 chosen so that
-      !> every node's four values are one 32-byte aligned vector (no load across two cache lines) [mm]
+      !> scratch of the sweep: (ux, uy, uy, ux) of each node, from the first element on a 64-byte
+      !> boundary on (rows_sweep), so that every node's four values are one aligned vector (no
+      !> load across two cache lines) (4 nnode + 8) [mm]
       real(wp), allocatable :: ud(:)
-      integer :: ud0 = 0
    contains
       procedure :: init => rows_init
       procedure :: parts => rows_parts
@@ -63,7 +63,7 @@ contains
    !> per-dof masses (stiff%mass, after any mass scaling). (4 nnode must fit 32 bits: meshes
    !> of fewer than 5e8 nodes.)
    subroutine rows_init(this, stiff)
-      class(rows_t), intent(out), target :: this
+      class(rows_t), intent(out) :: this
       type(stiffness_t), intent(in) :: stiff
       integer :: r, k, i, nx
       this%nnode = stiff%nnode
@@ -97,7 +97,6 @@ contains
       this%minvdof = 1/this%mdof
       allocate (this%ud(4*this%nnode + 8))
       this%ud = 0
-      this%ud0 = int(modulo(-transfer(c_loc(this%ud(1)), 0_c_intptr_t), 64_c_intptr_t)/8)
    end subroutine rows_init
 
    !> A block in the lanes of the sweep: (b11, b22, b12, b21), multiplied by (ux, uy, uy, ux).
@@ -118,15 +117,18 @@ contains
    !>    (sum m v*^2, sum m ((v* + v)/2)^2, sum w . f, sum m (v* - v)^2)
    !> (the quantities of contact2d_sweep's module header).
    subroutine rows_sweep(this, u, v, f, ca, cb, dt, w, partial)
-      class(rows_t), intent(inout) :: this
+      class(rows_t), intent(inout), target :: this
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
       real(wp), intent(inout) :: v(:, :)    !< v^(n-1/2) in, v* out [mm/s]
       real(wp), intent(inout) :: f(:, :)    !< K u^n out [N]
       real(wp), intent(in) :: ca, cb, dt    !< (1 - a dt/2)/(1 + a dt/2), dt/(1 + a dt/2) [s], dt [s]
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       real(wp), intent(inout) :: partial(:, :)   !< (4, rows_parts)
+      integer :: ud0
+      ! the first element of ud on a 64-byte boundary (where the array is now)
+      ud0 = int(modulo(-transfer(c_loc(this%ud(1)), 0_c_intptr_t), 64_c_intptr_t)/8)
       call sweep_chunks(this%nnode, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, this%xrow, this%xblk, &
-                        u, v, f, this%mdof, this%minvdof, ca, cb, dt, w, partial, this%ud(this%ud0 + 1:), &
+                        u, v, f, this%mdof, this%minvdof, ca, cb, dt, w, partial, this%ud(ud0 + 1:), &
                         this%nnode >= omp_min_nodes)
    end subroutine rows_sweep
 
