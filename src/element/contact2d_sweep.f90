@@ -5,6 +5,13 @@
 !>    v* = ca v^(n-1/2) - cb M^-1 K u^n,   u~ = u^n + dt v*   (v overwritten by v*),
 !>    partial = (sum m v*^2, sum m ((v* + v^(n-1/2))/2)^2, sum u~ . K u^n, sum m (v* - v^(n-1/2))^2).
 !>
+!> With full = .false. the inside rows of structured meshes neither store K u at their interior
+!> nodes (sweep_t%kept: where it is always stored) nor form the third sum: the steps on which
+!> nobody reads them (contact2d_explicit).
+!>
+!> The grid rows of structured meshes leave the second sum zero: the caller has it from the
+!> others and sum m (v^(n-1/2))^2, (a + b)^2 = 2 a^2 + 2 b^2 - (a - b)^2 (contact2d_explicit).
+!>
 !> v* is v^(n+1/2) wherever nothing changes u~ after the sweep; the caller corrects the velocity
 !> and these sums at the loaded, prescribed and contact dofs (contact2d_explicit).
 !>
@@ -39,21 +46,26 @@ module contact2d_sweep
       real(wp) :: s(2, 2, -1:1, -1:1, 3, 3) = 0   !< the nine stencils (structured)
       real(wp) :: cv(0:7, -3:3, 3, 3) = 0         !< flat interior coefficients (structured)
       real(wp) :: cs(0:7, -3:3, 3, 3) = 0         !< the same for blocks that start at odd p
+      real(wp) :: e(2, 4, -1:1, 2, 3) = 0         !< end-node stencils (end_coefficients)
       !> the interior stencil has the symmetries of a rectangle (symmetric_coefficients): inside
       !> rows then use its nine distinct values, qs, on sums and differences of rows
       logical :: sym = .false.
-      real(wp) :: qs(0:7, 6) = 0
-      !> per thread, the sum and difference rows of grid_row_sym, (0:2 (nx + 1) + 5, 2, 0:nscr - 1)
+      real(wp) :: qs(0:7, 5) = 0
+      !> per thread, the sum and difference rows of grid_row_sym, (0:2 (nx + 1) - 1, 2, 0:nscr - 1)
       real(wp), allocatable :: scr(:, :, :)
       integer :: nscr = 0
       !> per-dof masses and inverses of each class of grid row, (2 (nx + 1), nclass) [t], [1/t]
       real(wp), allocatable :: rmass(:, :), rminv(:, :)
+      !> cb rminv for the cb of cb_last (formed again when cb changes: the damping) [s/t]
+      real(wp), allocatable :: rcbm(:, :)
+      real(wp) :: cb_last = -1
       integer, allocatable :: rclass(:)           !< class of each grid row (0:ny)
       type(rows_t) :: rows                        !< block rows and masses (general meshes)
       real(wp), allocatable :: partial(:, :)      !< sums of the last sweep (4, parts)
    contains
       procedure :: init => sweep_init
       procedure :: step => sweep_step
+      procedure :: kept => sweep_kept
    end type sweep_t
 
 contains
@@ -79,13 +91,12 @@ contains
       call sweep_stencils(stiff%ke(:, :, 1), this%s)
       call flat_coefficients(this%s, this%cv)
       this%cs = this%cv([1, 0, 3, 2, 5, 4, 7, 6], :, :, :)
+      call end_coefficients(this%s, this%e)
       call symmetric_coefficients(this%s(:, :, :, :, 2, 2), this%sym, this%qs)
-      if (this%sym) then
-         this%nscr = max(omp_get_max_threads(), omp_get_num_procs())
-         ! (the difference row has three zeros either side: see grid_row_sym)
-         allocate (this%scr(0:n + 5, 2, 0:this%nscr - 1))
-         this%scr = 0
-      end if
+      ! (allocated even when unused: it is passed to sweep_grid)
+      this%nscr = max(omp_get_max_threads(), omp_get_num_procs())
+      allocate (this%scr(0:n - 1, 2, 0:this%nscr - 1))
+      this%scr = 0
       ! per-dof masses of every row; the class of row j is its row type (1 bottom, 2 inside, 3 top)
       mrow = reshape(spread(stiff%mass, 1, 2), [n, ny + 1])
       allocate (this%rclass(0:ny))
@@ -104,6 +115,8 @@ contains
          this%rclass = [(j + 1, j=0, ny)]
       end if
       this%rminv = 1/this%rmass
+      this%rcbm = this%rminv
+      this%cb_last = -1
       allocate (this%partial(4, ny + 1))
    end subroutine sweep_init
 
@@ -140,7 +153,7 @@ contains
 
    !> One sweep: f = K u, v = v* = ca v - cb M^-1 f, w = u + dt v*, and the partial sums of
    !> this%partial (see the module header).
-   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w)
+   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w, full)
       class(sweep_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
@@ -148,27 +161,50 @@ contains
       real(wp), intent(inout) :: f(:, :)    !< K u^n out [N]
       real(wp), intent(in) :: ca, cb, dt    !< (1 - a dt/2)/(1 + a dt/2), dt/(1 + a dt/2) [s], dt [s]
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
+      !> K u at every node and the sum u~ . K u (default); else only where kept (module header)
+      logical, intent(in), optional :: full
+      logical :: all_out
+      all_out = .true.
+      if (present(full)) all_out = full
       if (this%structured) then
-         call sweep_grid(this%nx, this%ny, this%s, this%cv, this%cs, this%rmass, this%rminv, this%rclass, u, v, f, &
-                         ca, cb, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, this%scr, &
-                         this%nscr)
+         ! cb M^-1 per class of row, formed once per value of cb: the same bits as cb*minv(p)*f(p)
+         if (cb /= this%cb_last) then
+            this%rcbm = cb*this%rminv
+            this%cb_last = cb
+         end if
+         call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, &
+                         u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
+                         this%scr, this%nscr, all_out)
       else
          call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial)
       end if
    end subroutine sweep_step
 
-   subroutine sweep_grid(nx, ny, s, cv, cs, rmass, rminv, rclass, u, v, f, ca, cb, dt, w, partial, par, sym, qs, &
-                         scr, nscr)
+   !> Is K u at this node stored by every sweep, full or not (module header)? On structured
+   !> meshes the boundary nodes; on general meshes all.
+   pure logical function sweep_kept(this, node) result(yes)
+      class(sweep_t), intent(in) :: this
+      integer, intent(in) :: node
+      integer :: i, j
+      yes = .true.
+      if (.not. this%structured) return
+      i = mod(node - 1, this%nx + 1)
+      j = (node - 1)/(this%nx + 1)
+      yes = i == 0 .or. i == this%nx .or. j == 0 .or. j == this%ny
+   end function sweep_kept
+
+   subroutine sweep_grid(nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, par, sym, qs, &
+                         scr, nscr, full)
       integer, intent(in) :: nx, ny
-      real(wp), intent(in) :: s(2, 2, -1:1, -1:1, 3, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
-      real(wp), intent(in) :: rmass(:, :), rminv(:, :)
+      real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
+      real(wp), intent(in) :: rmass(:, :), rcbm(:, :)
       integer, intent(in) :: rclass(0:ny)
       real(wp), intent(in) :: u(2, 0:nx, 0:ny)
       real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
-      real(wp), intent(in) :: ca, cb, dt
-      logical, intent(in) :: par, sym
+      real(wp), intent(in) :: ca, dt
+      logical, intent(in) :: par, sym, full
       real(wp), intent(inout) :: partial(4, 0:ny)
-      real(wp), intent(in) :: qs(0:7, 6)
+      real(wp), intent(in) :: qs(0:7, 5)
       integer, intent(in) :: nscr
       real(wp), intent(inout) :: scr(0:, :, 0:)
       integer :: j, rt, t
@@ -178,73 +214,84 @@ contains
          rt = row_type(j, ny)
          if (sym .and. rt == 2) then
             t = omp_get_thread_num()
-            call end_node(nx, ny, s, 0, j, 1, rt, u, f)
-            call end_node(nx, ny, s, nx, j, 3, rt, u, f)
             call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), f(1, 0, j), qs, &
-                              scr(:, 1, t), scr(:, 2, t), v(1, 0, j), rmass(:, rclass(j)), rminv(:, rclass(j)), &
-                              ca, cb, dt, w(1, 0, j), partial(:, j))
+                              e(1, 1, -1, 1, rt), scr(:, 1, t), scr(:, 2, t), v(1, 0, j), rmass(:, rclass(j)), &
+                              rcbm(:, rclass(j)), ca, dt, w(1, 0, j), partial(1, j), full)
          else
             call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
-                          cv(:, :, :, rt), cs(:, :, :, rt))
-            call end_node(nx, ny, s, 0, j, 1, rt, u, f)
-            call end_node(nx, ny, s, nx, j, 3, rt, u, f)
-            call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rminv(:, rclass(j)), &
-                            ca, cb, dt, w(1, 0, j), partial(:, j))
+                          cv(0, -3, 1, rt), cs(0, -3, 1, rt), e(1, 1, -1, 1, rt))
+            call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rcbm(:, rclass(j)), &
+                            ca, dt, w(1, 0, j), partial(1, j))
          end if
       end do
       !$omp end parallel do
    end subroutine sweep_grid
 
    !> The predictor and the energy sums on one grid row as flat arrays of interleaved (x, y)
-   !> values, right after its K u (the row is in cache).
-   subroutine row_update(n, u0, v, f, m, minv, ca, cb, dt, w, part)
+   !> values, right after its K u (the row is in cache); cbm = cb M^-1 of the row.
+   subroutine row_update(n, u0, v, f, m, cbm, ca, dt, w, part)
       integer, intent(in) :: n
-      real(wp), intent(in) :: u0(0:n - 1), f(0:n - 1), m(0:n - 1), minv(0:n - 1), ca, cb, dt
+      real(wp), intent(in) :: u0(0:n - 1), f(0:n - 1), m(0:n - 1), cbm(0:n - 1), ca, dt
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
-      part = 0
-      call range_update(0, n - 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
-      part(2) = 0.25_wp*part(2)
-   end subroutine row_update
-
-   !> The same on the outputs p0 .. p1 only, added to part, whose vbar sum lacks the factor 1/4.
-   subroutine range_update(p0, p1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
-      integer, intent(in) :: p0, p1, n
-      real(wp), intent(in) :: u0(0:n - 1), f(0:n - 1), m(0:n - 1), minv(0:n - 1), ca, cb, dt
-      real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
-      real(wp), intent(inout) :: part(4)
       integer :: p
-      real(wp) :: vo, vs, wn, ek, ed, es, ea
+      real(wp) :: vo, vs, wn, ek, es, ea
       ek = 0
-      ed = 0
       es = 0
       ea = 0
-      !$omp simd private(vo, vs, wn) reduction(+:ek, ed, es, ea)
-      do p = p0, p1
+      !$omp simd private(vo, vs, wn) reduction(+:ek, es, ea)
+      do p = 0, n - 1
          vo = v(p)
-         vs = ca*vo - cb*minv(p)*f(p)
+         vs = ca*vo - cbm(p)*f(p)
          wn = u0(p) + dt*vs
          ek = ek + m(p)*vs*vs
-         ed = ed + m(p)*(vs + vo)**2
          es = es + wn*f(p)
          ea = ea + m(p)*(vs - vo)**2
          v(p) = vs
          w(p) = wn
       end do
-      part = part + [ek, ed, es, ea]
-   end subroutine range_update
+      ! (element by element: an array constructor here allocates in Debug builds)
+      part(1) = ek
+      part(2) = 0
+      part(3) = es
+      part(4) = ea
+   end subroutine row_update
+
+   !> The same on the few outputs p0 .. p1 of a row left over by grid_row_sym's blocks (no
+   !> vector set-up), added to ek, es, ea.
+   subroutine tail_update(p0, p1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
+      integer, intent(in) :: p0, p1, n
+      real(wp), intent(in) :: u0(0:n - 1), f(0:n - 1), m(0:n - 1), cbm(0:n - 1), ca, dt
+      real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1), ek, es, ea
+      integer :: p
+      real(wp) :: vo, vs, wn
+      do p = p0, p1
+         vo = v(p)
+         vs = ca*vo - cbm(p)*f(p)
+         wn = u0(p) + dt*vs
+         ek = ek + m(p)*vs*vs
+         es = es + wn*f(p)
+         ea = ea + m(p)*(vs - vo)**2
+         v(p) = vs
+         w(p) = wn
+      end do
+   end subroutine tail_update
 
    !> K u on the interior nodes of one grid row as flat arrays of interleaved (x, y) values
    !> (n = 2 (nx + 1)).
-   subroutine grid_row(n, um, u0, up, f, cv, c)
+   subroutine grid_row(n, um, u0, up, f, cv, c, e)
       integer, intent(in) :: n
       real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1)
+      real(wp), intent(in) :: e(2, 4, -1:1, 2)   !< end-node stencils of this row type
       real(wp), intent(in) :: cv(0:7, -3:3, 3)
       real(wp), intent(in) :: c(0:7, -3:3, 3)   !< cv for blocks that start at odd p (a y output)
       real(wp), intent(inout) :: f(0:n - 1)
       integer :: b, l, p, nb
       real(wp) :: sm, s0, sp
-      if (n < 6) return   ! one column of elements: no interior node (the end nodes follow)
+      ! (array elements for the explicit-shape dummies: no temporaries)
+      call end_node(e(1, 1, -1, 1), um(0), u0(0), up(0), f(0))
+      call end_node(e(1, 1, -1, 2), um(n - 4), u0(n - 4), up(n - 4), f(n - 2))
+      if (n < 6) return   ! one column of elements: no interior node
       ! outputs p = 2 .. n - 3 (the interior nodes); u_r(p + o) must stay within 0 .. n - 1, so
       ! the first (x, offset -3) and the last (y, offset +3) output leave out the term whose
       ! coefficient is zero; the others go by blocks of eight, then one by one
@@ -293,79 +340,112 @@ contains
    !> predictor and the energy sums. With the row sum S = um + up and difference D = up - um,
    !>    f(p) = A0 u0(p) + A2 (u0(p - 2) + u0(p + 2)) + B0 S(p) + B2 (S(p - 2) + S(p + 2))
    !>           + CX (D(p + 3) - D(p - 1)) + CY (D(p + 1) - D(p - 3)),
-   !> coefficients by the parity of p (x or y output; CY = 0 for x, CX = 0 for y): 8
-   !> multiply-adds and 9 loads per output instead of 21 and 21. Blocks of four outputs (one
-   !> 256-bit vector; four lanes of partial sums), so that coefficients and sums stay in
-   !> registers. db has three entries either side of the row, zero (set once at set-up).
-   subroutine grid_row_sym(n, um, u0, up, f, q, sb, db, v, m, minv, ca, cb, dt, w, part)
+   !> coefficients by the parity of p (x or y output; CY = 0 for x, CX = 0 for y, CX = CY = C
+   !> otherwise). The difference row is kept with x and y swapped, E(p) = D(p xor 1), so that the
+   !> last term is C (E(p + 2) - E(p - 2)) on either parity: 6 multiply-adds and 8 loads per
+   !> output instead of 21 and 21. Blocks of four outputs (one 256-bit vector; four lanes of
+   !> partial sums), so that coefficients and sums stay in registers. cbm = cb M^-1 of the row.
+   subroutine grid_row_sym(n, um, u0, up, f, q, e, sb, eb, v, m, cbm, ca, dt, w, part, full)
       integer, intent(in) :: n
-      real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 6)
-      real(wp), intent(inout) :: f(0:n - 1), sb(0:n + 5), db(-3:n + 2)
-      real(wp), intent(in) :: m(0:n - 1), minv(0:n - 1), ca, cb, dt
+      real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 5)
+      real(wp), intent(in) :: e(2, 4, -1:1, 2)   !< end-node stencils of this row type
+      real(wp), intent(inout) :: f(0:n - 1), sb(0:n - 1), eb(0:n - 1)
+      real(wp), intent(in) :: m(0:n - 1), cbm(0:n - 1), ca, dt
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
+      logical, intent(in) :: full   !< store f and form the u~ . f sum at the interior outputs
       integer :: b, l, p, nb
-      real(wp) :: fp, vo, vs, wn, ek4(0:3), ed4(0:3), es4(0:3), ea4(0:3)
-      part = 0
+      real(wp) :: fp, vo, vs, wn, ek, es, ea, ek4(0:3), es4(0:3), ea4(0:3)
+      ! (array elements for the explicit-shape dummies: no temporaries)
+      call end_node(e(1, 1, -1, 1), um(0), u0(0), up(0), f(0))
+      call end_node(e(1, 1, -1, 2), um(n - 4), u0(n - 4), up(n - 4), f(n - 2))
+      ek = 0
+      es = 0
+      ea = 0
       if (n >= 6) then   ! else one column of elements: no interior node
          !$omp simd
-         do p = 0, n - 1
+         do p = 0, n - 2, 2
             sb(p) = um(p) + up(p)
-            db(p) = up(p) - um(p)
+            sb(p + 1) = um(p + 1) + up(p + 1)
+            eb(p) = up(p + 1) - um(p + 1)
+            eb(p + 1) = up(p) - um(p)
          end do
          ek4 = 0
-         ed4 = 0
          es4 = 0
          ea4 = 0
          ! outputs p = 2 .. n - 3 by blocks of four (lane l has the parity of l)
          nb = (n - 4)/4
-         do b = 0, nb - 1
-            !$omp simd private(p, fp, vo, vs, wn)
-            do l = 0, 3
-               p = 2 + 4*b + l
-               fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
-                     + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
-                    + (q(l, 5)*(db(p + 3) - db(p - 1)) + q(l, 6)*(db(p + 1) - db(p - 3)))
-               f(p) = fp
-               vo = v(p)
-               vs = ca*vo - cb*minv(p)*fp
-               wn = u0(p) + dt*vs
-               ek4(l) = ek4(l) + m(p)*vs*vs
-               ed4(l) = ed4(l) + m(p)*(vs + vo)**2
-               es4(l) = es4(l) + wn*fp
-               ea4(l) = ea4(l) + m(p)*(vs - vo)**2
-               v(p) = vs
-               w(p) = wn
+         if (full) then
+            do b = 0, nb - 1
+               !$omp simd private(p, fp, vo, vs, wn)
+               do l = 0, 3
+                  p = 2 + 4*b + l
+                  fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
+                        + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
+                       + q(l, 5)*(eb(p + 2) - eb(p - 2))
+                  f(p) = fp
+                  vo = v(p)
+                  vs = ca*vo - cbm(p)*fp
+                  wn = u0(p) + dt*vs
+                  ek4(l) = ek4(l) + m(p)*vs*vs
+                  es4(l) = es4(l) + wn*fp
+                  ea4(l) = ea4(l) + m(p)*(vs - vo)**2
+                  v(p) = vs
+                  w(p) = wn
+               end do
             end do
-         end do
+         else
+            ! the same without f and the u~ . f sum
+            do b = 0, nb - 1
+               !$omp simd private(p, fp, vo, vs)
+               do l = 0, 3
+                  p = 2 + 4*b + l
+                  fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
+                        + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
+                       + q(l, 5)*(eb(p + 2) - eb(p - 2))
+                  vo = v(p)
+                  vs = ca*vo - cbm(p)*fp
+                  ek4(l) = ek4(l) + m(p)*vs*vs
+                  ea4(l) = ea4(l) + m(p)*(vs - vo)**2
+                  v(p) = vs
+                  w(p) = u0(p) + dt*vs
+               end do
+            end do
+         end if
          do p = 2 + 4*nb, n - 3
             l = mod(p, 2)
             f(p) = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
                     + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
-                   + (q(l, 5)*(db(p + 3) - db(p - 1)) + q(l, 6)*(db(p + 1) - db(p - 3)))
+                   + q(l, 5)*(eb(p + 2) - eb(p - 2))
          end do
-         ! the outputs left over: the end nodes (K u by the caller) and those after the blocks
-         call range_update(0, 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
-         call range_update(2 + 4*nb, n - 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
          do l = 0, 3
-            part = part + [ek4(l), ed4(l), es4(l), ea4(l)]
+            ek = ek + ek4(l)
+            es = es + es4(l)
+            ea = ea + ea4(l)
          end do
+         ! the outputs left over: the end nodes (K u above) and those after the blocks
+         call tail_update(0, 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
+         call tail_update(2 + 4*nb, n - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
       else
-         call range_update(0, n - 1, n, u0, v, f, m, minv, ca, cb, dt, w, part)
+         call tail_update(0, n - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
       end if
-      part(2) = 0.25_wp*part(2)
+      ! (element by element: an array constructor here allocates in Debug builds)
+      part(1) = ek
+      part(2) = 0
+      part(3) = es
+      part(4) = ea
    end subroutine grid_row_sym
 
    !> The interior stencil s2 = s(:, :, :, :, 2, 2) of a mesh of equal rectangles aligned with
    !> the axes is even in both directions in its xx and yy blocks and odd in both in its xy and
    !> yx blocks, which are equal: nine values (a00, a10, a01, a11 of xx, the same of yy, c).
    !> ok if s2 has these symmetries to 1e-12 of its largest entry; q then holds, per lane of
-   !> eight flat outputs (even lanes x, odd lanes y), A0, A2, B0, B2, CX, CY of grid_row_sym,
+   !> eight flat outputs (even lanes x, odd lanes y), A0, A2, B0, B2, C of grid_row_sym,
    !> each the mean of the entries it stands for.
    pure subroutine symmetric_coefficients(s2, ok, q)
       real(wp), intent(in) :: s2(2, 2, -1:1, -1:1)
       logical, intent(out) :: ok
-      real(wp), intent(out) :: q(0:7, 6)
+      real(wp), intent(out) :: q(0:7, 5)
       real(wp) :: r(2, 2, -1:1, -1:1), a(0:1, 0:1, 2), c
       integer :: k, di, dj
       do k = 1, 2
@@ -386,8 +466,8 @@ contains
       end do
       ok = maxval(abs(r - s2)) <= 1.0e-12_wp*maxval(abs(s2))
       do k = 0, 7, 2
-         q(k, :) = [a(0, 0, 1), a(1, 0, 1), a(0, 1, 1), a(1, 1, 1), c, 0.0_wp]
-         q(k + 1, :) = [a(0, 0, 2), a(1, 0, 2), a(0, 1, 2), a(1, 1, 2), 0.0_wp, c]
+         q(k, :) = [a(0, 0, 1), a(1, 0, 1), a(0, 1, 1), a(1, 1, 1), c]
+         q(k + 1, :) = [a(0, 0, 2), a(1, 0, 2), a(0, 1, 2), a(1, 1, 2), c]
       end do
    end subroutine symmetric_coefficients
 
@@ -416,27 +496,37 @@ contains
       end do
    end subroutine flat_coefficients
 
-   !> K u at the end node (i, j) of a grid row, column type ct and row type rt, bounds checked.
-   subroutine end_node(nx, ny, s, i, j, ct, rt, u, f)
-      integer, intent(in) :: nx, ny, i, j, ct, rt
+   !> The end-node stencils of end_node: e(c, :, dj, side, rt) are the coefficients of output c
+   !> (x, y) of the low (side 1, i = 0) or high (side 2, i = nx) end node of a row of type rt on
+   !> the four values (x, y of the column i0, x, y of i0 + 1; i0 = 0 or nx - 1) of row j + dj.
+   pure subroutine end_coefficients(s, e)
       real(wp), intent(in) :: s(2, 2, -1:1, -1:1, 3, 3)
-      real(wp), intent(in) :: u(2, 0:nx, 0:ny)
-      real(wp), intent(inout) :: f(2, 0:nx, 0:ny)
-      integer :: di, dj, ii, jj
-      real(wp) :: gx, gy
-      gx = 0
-      gy = 0
-      do dj = -1, 1
-         jj = j + dj
-         if (jj < 0 .or. jj > ny) cycle
-         do di = -1, 1
-            ii = i + di
-            if (ii < 0 .or. ii > nx) cycle
-            gx = gx + s(1, 1, di, dj, ct, rt)*u(1, ii, jj) + s(1, 2, di, dj, ct, rt)*u(2, ii, jj)
-            gy = gy + s(2, 1, di, dj, ct, rt)*u(1, ii, jj) + s(2, 2, di, dj, ct, rt)*u(2, ii, jj)
+      real(wp), intent(out) :: e(2, 4, -1:1, 2, 3)
+      integer :: rt, dj, side, c, di0, ct
+      do rt = 1, 3
+         do side = 1, 2
+            ct = merge(1, 3, side == 1)
+            di0 = merge(0, -1, side == 1)
+            do dj = -1, 1
+               do c = 1, 2
+                  e(c, :, dj, side, rt) = [s(c, 1, di0, dj, ct, rt), s(c, 2, di0, dj, ct, rt), &
+                                           s(c, 1, di0 + 1, dj, ct, rt), s(c, 2, di0 + 1, dj, ct, rt)]
+               end do
+            end do
          end do
       end do
-      f(1, i, j) = gx
-      f(2, i, j) = gy
+   end subroutine end_coefficients
+
+   !> K u at an end node of a grid row from the four values (x, y of two columns) at its end of
+   !> rows j - 1, j, j + 1 (a, b, c) and its end-node stencil (end_coefficients; the blocks of
+   !> missing rows are zero, adding nothing), in the order of the full stencil (dj, then di); x
+   !> and y outputs side by side.
+   pure subroutine end_node(e, a, b, c, g)
+      real(wp), intent(in) :: e(2, 4, -1:1), a(4), b(4), c(4)
+      real(wp), intent(out) :: g(2)
+      g = 0
+      g = g + e(:, 1, -1)*a(1) + e(:, 2, -1)*a(2) + e(:, 3, -1)*a(3) + e(:, 4, -1)*a(4)
+      g = g + e(:, 1, 0)*b(1) + e(:, 2, 0)*b(2) + e(:, 3, 0)*b(3) + e(:, 4, 0)*b(4)
+      g = g + e(:, 1, 1)*c(1) + e(:, 2, 1)*c(2) + e(:, 3, 1)*c(3) + e(:, 4, 1)*c(4)
    end subroutine end_node
 end module contact2d_sweep

@@ -51,11 +51,15 @@ module contact2d_explicit
       real(wp), allocatable :: unew(:, :)  !< u~, then u^(n+1) [mm]
       type(sweep_t) :: sweep               !< K u, predictor and energy sums in one pass
       !> dofs whose u~ changes after the sweep (loads, prescribed, contact nodes), as indices of
-      !> the flattened (2 nnode) arrays, their nodes, and their v^(n-1/2), v* and u~ of the
-      !> current step; set up by the first advance
-      integer, allocatable :: sdof(:), snode(:)
+      !> the flattened (2 nnode) arrays, and their v^(n-1/2), v* and u~ of the current step; set
+      !> up by the first advance. The first s_npres are the prescribed dofs in load order.
+      integer, allocatable :: sdof(:)
+      integer :: s_npres = 0
       real(wp), allocatable :: s_vold(:), s_vstar(:), s_wstar(:)
+      real(wp), allocatable :: s_mass(:)   !< the mass of each listed dof [t]
       integer :: s_ncontact = -1           !< contact nodes when sdof was built
+      !> a listed dof where the sweep does not always store K u: every sweep is then full
+      logical :: s_interior = .false.
       real(wp), allocatable :: fint(:, :)  !< K u^n of the last step [N]
       real(wp), allocatable :: fext(:, :)  !< f_ext(t_n) of the last step [N]
       real(wp), allocatable :: fc(:, :)    !< contact force on the body of the last step [N]
@@ -71,11 +75,14 @@ module contact2d_explicit
       integer, allocatable :: pres_elements(:)   !< elements touching a prescribed dof
       ! energies (SPEC section 6) [mJ = N mm]
       real(wp) :: kinetic = 0              !< 1/2 v^(n+1/2) M v^(n+1/2)
-      real(wp) :: strain = 0               !< 1/2 u^(n+1) K u^n
+      real(wp) :: strain = 0               !< 1/2 u^(n+1) K u^n (current when advance returns)
       real(wp) :: external_work = 0        !< loads and Dirichlet reactions
       real(wp) :: work_in = 0              !< sum of |external work increments|
       real(wp) :: damping_dissipation = 0
       real(wp) :: initial_kinetic = 0      !< 1/2 v^(-1/2) M v^(-1/2), energy put in at t = 0 (issue 12)
+      !> sum m (v^(n-1/2))^2 (twice the kinetic energy of the last step; formed again from v at
+      !> the start of every advance, so that a velocity set between calls counts)
+      real(wp) :: vsum = 0
       logical :: blown_up = .false.
       !> sum m (v^(n+1/2) - v^(n-1/2))^2 / sum m (v^(n+1/2))^2 of the last step: close to 4
       !> for a mode that changes sign every step (the one that grows when dt is too long)
@@ -151,13 +158,16 @@ contains
       type(contact_t), intent(inout) :: contact
       integer, intent(in) :: nsteps
       integer :: k, p, node, comp
-      real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, acc, f, corr(4)
+      real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, workt, f, corr(4)
+      logical :: full
       real(wp), allocatable :: swap(:, :)
 
       ! set-up, outside the step loop: the dofs that change after the sweep
       if (.not. allocated(this%sdof) .or. this%s_ncontact /= merge(contact%nc, 0, contact%active)) &
          call special_dofs(this, load, contact)
+      this%vsum = mass_sum(2*this%nnode, this%mdof, this%v)
       dt = this%dt
+      full = .true.
       do k = 1, nsteps
          ! 1-2. internal force at u^n and, fused with it, the predictor without the loads:
          !      v* = (a1 v - dt M^-1 f_int)/(1 + a dt/2), u~ = u + dt v*
@@ -166,8 +176,13 @@ contains
          a2inv = 1/(1 + 0.5_wp*this%alpha*dt)
          c = dt*dt*a2inv
          call special_gather(size(this%sdof), this%sdof, this%v, this%s_vold)
-         ! one sweep: K u^n, v* (into v), u~ and the energy sums of v*
-         call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew)
+         ! one sweep: K u^n, v* (into v), u~ and the energy sums of v*; K u at every node and
+         ! the strain energy only on the steps that read them (the last of this call, for the
+         ! driver's residual and output; the damping estimate's)
+         full = k == nsteps .or. this%s_interior
+         if (this%damping == damping_auto) &
+            full = full .or. mod(this%step, int(this%damping_interval, i8)) == 0
+         call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full)
          ! the dofs changed below: keep v* and u~, give back v^(n-1/2) (loads, reactions and
          ! the contact step use it)
          call special_keep(size(this%sdof), this%sdof, this%v, this%unew, this%s_vold, this%s_vstar, this%s_wstar)
@@ -195,30 +210,23 @@ contains
          if (contact%active) call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc)
          ! 4a. external work of the reactions (inertial and damping parts included) and loads,
          !     with the centred increment (u^(n+1) - u^(n-1))/2 = dt vbar
-         work = 0
-         do p = 1, load%npres
-            node = load%pnode(p)
-            comp = load%pcomp(p)
-            vnew = (this%unew(comp, node) - this%u(comp, node))/dt
-            vbar = 0.5_wp*(vnew + this%v(comp, node))
-            acc = (vnew - this%v(comp, node))/dt
-            f = this%mass(node)*(acc + this%alpha*vbar) + this%fint(comp, node)
-            work = work + f*dt*vbar
-         end do
+         !     (the reactions in special_correct below, the loads here, before it changes v)
+         workt = 0
          do p = 1, load%ntrac
             node = load%tnode(p)
             comp = load%tcomp(p)
             vnew = (this%unew(comp, node) - this%u(comp, node))/dt
             vbar = 0.5_wp*(vnew + this%v(comp, node))
-            work = work + this%cval(load%tcurve(p))*load%tweight(p)*dt*vbar
+            workt = workt + this%cval(load%tcurve(p))*load%tweight(p)*dt*vbar
          end do
-         this%external_work = this%external_work + work
-         this%work_in = this%work_in + abs(work)
          ! 4b. velocities and energies: v^(n+1/2) = v* but at the changed dofs, where it is
          !     (u^(n+1) - u^n)/dt and the sums of the sweep are corrected (in a fixed order)
-         call special_correct(size(this%sdof), this%sdof, this%snode, this%mass, this%u, this%unew, this%fint, dt, &
-                              this%s_vold, this%s_vstar, this%s_wstar, this%v, corr)
-         call add_energies(this, this%sweep%partial, corr, this%alpha, dt)
+         call special_correct(size(this%sdof), this%s_npres, this%sdof, this%s_mass, this%u, this%unew, this%fint, &
+                              dt, this%alpha, this%s_vold, this%s_vstar, this%s_wstar, this%v, corr, work)
+         work = work + workt
+         this%external_work = this%external_work + work
+         this%work_in = this%work_in + abs(work)
+         call add_energies(this, this%sweep%partial, corr, this%alpha, dt, full)
          ! u^(n+1) becomes u (the arrays are swapped, not copied)
          call move_alloc(this%u, swap)
          call move_alloc(this%unew, this%u)
@@ -235,8 +243,13 @@ contains
             call guard_check(this)
             if (this%growing) exit
          end if
-         if (contact%stat /= 0 .or. sys_signal_pending() /= 0) return
+         if (contact%stat /= 0 .or. sys_signal_pending() /= 0) exit
       end do
+      ! stopped early after a step that was not full: K u^n and the strain energy of that step
+      if (.not. full) then
+         call stiff%apply(this%unew, this%fint)
+         this%strain = 0.5_wp*sum(this%u*this%fint)
+      end if
    end subroutine explicit_advance
 
    !> The dofs whose u~ is changed after the sweep: loaded, prescribed and contact-node dofs,
@@ -263,15 +276,30 @@ contains
          this%s_ncontact = contact%nc
       end if
       n = count(mark)
-      if (allocated(this%sdof)) deallocate (this%sdof, this%snode, this%s_vold, this%s_vstar, this%s_wstar)
-      allocate (this%sdof(n), this%snode(n), this%s_vold(n), this%s_vstar(n), this%s_wstar(n))
+      this%s_interior = .false.
+      do node = 1, this%nnode
+         if (any(mark(:, node))) this%s_interior = this%s_interior .or. .not. this%sweep%kept(node)
+      end do
+      if (allocated(this%sdof)) deallocate (this%sdof, this%s_vold, this%s_vstar, this%s_wstar, this%s_mass)
+      allocate (this%sdof(n), this%s_vold(n), this%s_vstar(n), this%s_wstar(n), this%s_mass(n))
+      ! the prescribed dofs first, in load order (special_correct: reactions), then the others
       n = 0
+      do p = 1, load%npres
+         node = load%pnode(p)
+         comp = load%pcomp(p)
+         if (.not. mark(comp, node)) cycle
+         mark(comp, node) = .false.
+         n = n + 1
+         this%sdof(n) = 2*(node - 1) + comp
+         this%s_mass(n) = this%mass(node)
+      end do
+      this%s_npres = n
       do node = 1, this%nnode
          do comp = 1, 2
             if (.not. mark(comp, node)) cycle
             n = n + 1
             this%sdof(n) = 2*(node - 1) + comp
-            this%snode(n) = node
+            this%s_mass(n) = this%mass(node)
          end do
       end do
    end subroutine special_dofs
@@ -302,28 +330,42 @@ contains
    end subroutine special_keep
 
    !> At the listed dofs, after the contact step: v^(n+1/2) = (u^(n+1) - u^n)/dt, and the changes
-   !> of the sweep's sums (m v^2, m vbar^2, u . K u, m dv^2) from v* and u~ to these values, in
-   !> list order.
-   subroutine special_correct(n, dof, node, mass, u, unew, fint, dt, vold, vstar, wstar, v, corr)
-      integer, intent(in) :: n, dof(n), node(n)
-      real(wp), intent(in) :: mass(*), u(*), unew(*), fint(*), dt, vold(n), vstar(n), wstar(n)
+   !> of the sweep's sums (m v^2, -, u . K u, m dv^2) from v* and u~ to these values, in list
+   !> order (a^2 - b^2 = (a - b)(a + b); the damping sum is not needed: add_energies). At the
+   !> first np (prescribed) dofs also the work of the reactions, inertial and damping parts
+   !> included, on the centred increment dt vbar = (u^(n+1) - u^(n-1))/2.
+   subroutine special_correct(n, np, dof, mass, u, unew, fint, dt, alpha, vold, vstar, wstar, v, corr, work)
+      integer, intent(in) :: n, np, dof(n)
+      real(wp), intent(in) :: mass(n), u(*), unew(*), fint(*), dt, alpha, vold(n), vstar(n), wstar(n)
       real(wp), intent(inout) :: v(*)
-      real(wp), intent(out) :: corr(4)
+      real(wp), intent(out) :: corr(4), work
       integer :: q, d
-      real(wp) :: m, vo, vs, vn
-      corr = 0
+      real(wp) :: vo, vs, vn, md, c1, c3, c4, vbar, acc, f
+      c1 = 0
+      c3 = 0
+      c4 = 0
+      work = 0
       do q = 1, n
          d = dof(q)
-         m = mass(node(q))
          vo = vold(q)
          vs = vstar(q)
          vn = (unew(d) - u(d))/dt
-         corr(1) = corr(1) + m*(vn*vn - vs*vs)
-         corr(2) = corr(2) + m*((0.5_wp*(vn + vo))**2 - (0.5_wp*(vs + vo))**2)
-         corr(3) = corr(3) + (unew(d) - wstar(q))*fint(d)
-         corr(4) = corr(4) + m*((vn - vo)**2 - (vs - vo)**2)
+         if (q <= np) then
+            vbar = 0.5_wp*(vn + vo)
+            acc = (vn - vo)/dt
+            f = mass(q)*(acc + alpha*vbar) + fint(d)
+            work = work + f*dt*vbar
+         end if
+         md = mass(q)*(vn - vs)
+         c1 = c1 + md*(vn + vs)
+         c3 = c3 + (unew(d) - wstar(q))*fint(d)
+         c4 = c4 + md*((vn + vs) - 2*vo)
          v(d) = vn
       end do
+      corr(1) = c1
+      corr(2) = 0
+      corr(3) = c3
+      corr(4) = c4
    end subroutine special_correct
 
 
@@ -366,27 +408,30 @@ contains
       this%guard_kin_rise = 0
    end subroutine explicit_set_dt
 
-   !> Energies of the step from the sweep's partial sums (m v^2, m vbar^2, u . K u, m dv^2), added
-   !> in order, and the corrections of the changed dofs.
-   subroutine add_energies(this, partial, corr, alpha, dt)
+   !> Energies of the step from the sweep's partial sums (m v^2, -, u . K u, m dv^2), added in
+   !> order, and the corrections of the changed dofs. The damping sum m vbar^2 = m (v + vold)^2/4
+   !> follows from (a + b)^2 = 2 a^2 + 2 b^2 - (a - b)^2 with this%vsum = sum m vold^2: no
+   !> cancellation (all three terms are non-negative, the subtracted one the smallest when the
+   !> motion is smooth). this%vsum becomes sum m v^2 of this step.
+   subroutine add_energies(this, partial, corr, alpha, dt, full)
       type(explicit_t), intent(inout) :: this
       real(wp), intent(in) :: partial(:, :), corr(4), alpha, dt
+      logical, intent(in) :: full   !< the strain sum was formed (else this%strain is kept)
       real(wp) :: ekin, edamp, estrain, ealt
       integer :: b
       ekin = 0
-      edamp = 0
       estrain = 0
       ealt = 0
       do b = 1, size(partial, 2)
          ekin = ekin + partial(1, b)
-         edamp = edamp + partial(2, b)
          estrain = estrain + partial(3, b)
          ealt = ealt + partial(4, b)
       end do
       ekin = ekin + corr(1)
-      edamp = edamp + corr(2)
       estrain = estrain + corr(3)
       ealt = ealt + corr(4)
+      edamp = 0.5_wp*(ekin + this%vsum) - 0.25_wp*ealt
+      this%vsum = ekin
       ! (not merge: both of its arguments are evaluated, and 0/0 traps in Debug builds)
       if (ekin > 0) then
          this%alternating = ealt/ekin
@@ -395,9 +440,21 @@ contains
       end if
       this%alternating_energy = 0.5_wp*ealt
       this%kinetic = 0.5_wp*ekin
-      this%strain = 0.5_wp*estrain
+      if (full) this%strain = 0.5_wp*estrain
       this%damping_dissipation = this%damping_dissipation + alpha*dt*edamp
    end subroutine add_energies
+
+   !> sum m v^2 over the flattened dofs, in a fixed order (thread-independent bits).
+   real(wp) function mass_sum(ndof, mdof, v) result(t)
+      integer, intent(in) :: ndof
+      real(wp), intent(in) :: mdof(ndof), v(ndof)
+      integer :: i
+      t = 0
+      !$omp simd reduction(+:t)
+      do i = 1, ndof
+         t = t + mdof(i)*v(i)*v(i)
+      end do
+   end function mass_sum
 
    !> Automatic damping (dynamic relaxation, SPEC section 5): alpha = 2 omega_1, with omega_1^2
    !> the Rayleigh quotient of the free part du_f of the displacement increment since the last
@@ -484,21 +541,9 @@ contains
       type(loading_t), intent(in) :: load
       real(wp), intent(in), optional :: floor
       real(wp), intent(out), optional :: scale_out
-      real(wp) :: rfree, scale, r
-      integer :: i, j
-      rfree = 0
-      scale = 0
+      real(wp) :: rfree, scale
       ! max is exact in any order: the same bits for any number of threads
-      !$omp parallel do schedule(static) private(j, r) reduction(max:rfree, scale) if(this%nnode >= omp_min_nodes)
-      do i = 1, this%nnode
-         do j = 1, 2
-            r = this%fext(j, i) - this%fint(j, i) + this%fc(j, i)
-            ! free dofs: out of balance; prescribed dofs: the reaction sets the scale
-            rfree = max(rfree, abs(r*load%free(j, i)))
-            scale = max(scale, abs(r*(1 - load%free(j, i))), abs(this%fext(j, i)), abs(this%fc(j, i)))
-         end do
-      end do
-      !$omp end parallel do
+      call residual_blocks(2*this%nnode, this%nblock, this%fext, this%fint, this%fc, load%free, rfree, scale)
       if (present(scale_out)) scale_out = scale
       if (present(floor)) scale = max(scale, floor)
       if (scale > 0) then
@@ -507,6 +552,30 @@ contains
          rel = 0
       end if
    end function explicit_residual
+
+   !> The largest out-of-balance force r = fext - fint + fc on the free dofs (rfree) and the
+   !> largest of |r| on the prescribed ones, |fext| and |fc| (scale), over the flattened dofs by
+   !> blocks (vector loops).
+   subroutine residual_blocks(ndof, nblock, fext, fint, fc, free, rfree, scale)
+      integer, intent(in) :: ndof, nblock
+      real(wp), intent(in) :: fext(ndof), fint(ndof), fc(ndof), free(ndof)
+      real(wp), intent(out) :: rfree, scale
+      integer :: b, i
+      real(wp) :: r
+      rfree = 0
+      scale = 0
+      !$omp parallel do schedule(static) private(i, r) reduction(max:rfree, scale) if(ndof >= 2*omp_min_nodes)
+      do b = 1, nblock
+         !$omp simd private(r) reduction(max:rfree, scale)
+         do i = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
+            r = fext(i) - fint(i) + fc(i)
+            ! free dofs: out of balance; prescribed dofs: the reaction sets the scale
+            rfree = max(rfree, abs(r*free(i)))
+            scale = max(scale, abs(r*(1 - free(i))), abs(fext(i)), abs(fc(i)))
+         end do
+      end do
+      !$omp end parallel do
+   end subroutine residual_blocks
 
    !> |E_kin0 + W_ext - (E_kin + E_strain + D_friction + D_damping + W_normal)| / max(terms),
    !> E_kin0 the initial kinetic energy (issue 12).
