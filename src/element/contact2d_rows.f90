@@ -11,14 +11,20 @@
 !> Rows are stored with a fixed width of ell_width = 9 blocks (a node of a regular quad mesh has
 !> 9 neighbours, itself included; 94 % of the rows of the refined Hertz meshes): a shorter row is
 !> padded with zero blocks on its own node, the blocks of a longer row beyond the ninth go to a
-!> small CSR remainder, added after the chunk's fixed-width pass. So the product of a row is straight-line code with no loop and no
-!> data-dependent branch: three accumulators of three blocks each (short dependency chains),
-!> each block B (four consecutive values, column-major) times u(col) as two 2-wide FMAs on
-!> (b11, b21) ux and (b12, b22) uy. The order of every sum is fixed by the layout, and chunks are
-!> fixed (chunk_rows rows) with their partial sums added in chunk order by the caller, so the
-!> bits do not depend on the number of threads or on which thread does which chunk.
+!> small CSR remainder, added after the chunk's fixed-width pass. So the product of a row is
+!> straight-line code with no loop and no data-dependent branch. Each 2 x 2 block B is stored as
+!> (b11, b22, b12, b21) and u is first copied, node by node, into ud = (ux, uy, uy, ux): the
+!> product of a block is then one 4-wide multiply-add, lanes (b11 ux, b22 uy, b12 uy, b21 ux),
+!> whose lanes 1 + 3 and 2 + 4 are the row's x and y (three accumulators of three blocks each:
+!> short dependency chains). Column offsets are 32-bit (4 (m - 1) into ud: fewer bytes; the
+!> sign-extending load costs no instruction more). The order of every sum is fixed by the
+!> layout, and chunks are fixed (chunk_rows rows) with their partial sums added in chunk order
+!> by the caller, so the bits do not depend on the number of threads or on which thread does
+!> which chunk.
 module contact2d_rows
+   use, intrinsic :: iso_fortran_env, only: int32
    use contact2d_kinds, only: wp, i8
+   use, intrinsic :: iso_c_binding, only: c_loc, c_intptr_t
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    implicit none
    private
@@ -33,13 +39,17 @@ module contact2d_rows
    !> The block rows of K of a general mesh (row r is node r), laid out for the sweep.
    type :: rows_t
       integer :: nnode = 0
-      integer(i8), allocatable :: col(:, :)     !< flat offset 2 (m - 1) of the column node m (ell_width, nnode)
-      real(wp), allocatable :: blk(:, :, :)     !< (b11, b21, b12, b22) of each block (4, ell_width, nnode) [N/mm]
+      integer(int32), allocatable :: col(:, :)  !< offset 4 (m - 1) into ud of the column node m (ell_width, nnode)
+      real(wp), allocatable :: blk(:, :, :)     !< (b11, b22, b12, b21) of each block (4, ell_width, nnode) [N/mm]
       integer, allocatable :: xstart(:)         !< remainder: first extra block of each row (nnode + 1)
-      integer(i8), allocatable :: xcol(:)       !< remainder: flat column offsets
+      integer(int32), allocatable :: xcol(:)    !< remainder: offsets into ud
       integer, allocatable :: xrow(:)           !< remainder: row of each extra block
-      real(wp), allocatable :: xblk(:, :)       !< remainder: blocks (4, nextra) [N/mm]
+      real(wp), allocatable :: xblk(:, :)       !< remainder: blocks (4, nextra), as blk [N/mm]
       real(wp), allocatable :: mdof(:), minvdof(:)   !< mass and 1/mass per dof (2 nnode) [t], [1/t]
+      !> scratch of the sweep: (ux, uy, uy, ux) of each node, from the first element on a 64-byte
+      !> boundary on (rows_sweep), so that every node's four values are one aligned vector (no
+      !> load across two cache lines) (4 nnode + 8) [mm]
+      real(wp), allocatable :: ud(:)
    contains
       procedure :: init => rows_init
       procedure :: parts => rows_parts
@@ -50,7 +60,8 @@ contains
 
    !> Set-up: the block rows of a general mesh (stiff%row_start, blk_col, blk; row r is node r)
    !> in the layout of the sweep, blocks in the order of stiff (increasing column node), and the
-   !> per-dof masses (stiff%mass, after any mass scaling).
+   !> per-dof masses (stiff%mass, after any mass scaling). (4 nnode must fit 32 bits: meshes
+   !> of fewer than 5e8 nodes.)
    subroutine rows_init(this, stiff)
       class(rows_t), intent(out) :: this
       type(stiffness_t), intent(in) :: stiff
@@ -66,25 +77,34 @@ contains
       do r = 1, this%nnode
          this%xstart(r) = nx + 1
          ! padding: zero blocks on the row's own node (adds exact zeros)
-         this%col(:, r) = 2*(int(r, i8) - 1)
+         this%col(:, r) = 4*(r - 1)
          this%blk(:, :, r) = 0
          do k = stiff%row_start(r), stiff%row_start(r + 1) - 1
             i = k - stiff%row_start(r) + 1
             if (i <= ell_width) then
-               this%col(i, r) = 2*(int(stiff%blk_col(k), i8) - 1)
-               this%blk(:, i, r) = reshape(stiff%blk(:, :, k), [4])
+               this%col(i, r) = 4*(stiff%blk_col(k) - 1)
+               this%blk(:, i, r) = lanes(stiff%blk(:, :, k))
             else
                nx = nx + 1
-               this%xcol(nx) = 2*(int(stiff%blk_col(k), i8) - 1)
+               this%xcol(nx) = 4*(stiff%blk_col(k) - 1)
                this%xrow(nx) = r
-               this%xblk(:, nx) = reshape(stiff%blk(:, :, k), [4])
+               this%xblk(:, nx) = lanes(stiff%blk(:, :, k))
             end if
          end do
       end do
       this%xstart(this%nnode + 1) = nx + 1
       this%mdof = reshape(spread(stiff%mass, 1, 2), [2*this%nnode])
       this%minvdof = 1/this%mdof
+      allocate (this%ud(4*this%nnode + 8))
+      this%ud = 0
    end subroutine rows_init
+
+   !> A block in the lanes of the sweep: (b11, b22, b12, b21), multiplied by (ux, uy, uy, ux).
+   pure function lanes(b) result(l)
+      real(wp), intent(in) :: b(2, 2)
+      real(wp) :: l(4)
+      l = [b(1, 1), b(2, 2), b(1, 2), b(2, 1)]
+   end function lanes
 
    !> Number of partial sums (chunks of block rows) of rows_sweep.
    pure integer function rows_parts(this) result(n)
@@ -94,106 +114,143 @@ contains
 
    !> One sweep on a general mesh, chunk by chunk of block rows: f = K u, then on the chunk's
    !> dofs v* = ca v - cb M^-1 f (written into v), w = u + dt v* and the chunk's partial sums
-   !>    (sum m v*^2, sum m ((v* + v)/2)^2, sum w . f, sum m (v* - v)^2)
+   !>    (sum m v*^2, 0, sum w . f, sum m (v* - v)^2: the second sum left to the caller)
    !> (the quantities of contact2d_sweep's module header).
    subroutine rows_sweep(this, u, v, f, ca, cb, dt, w, partial)
-      class(rows_t), intent(in) :: this
+      class(rows_t), intent(inout), target :: this
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
       real(wp), intent(inout) :: v(:, :)    !< v^(n-1/2) in, v* out [mm/s]
       real(wp), intent(inout) :: f(:, :)    !< K u^n out [N]
       real(wp), intent(in) :: ca, cb, dt    !< (1 - a dt/2)/(1 + a dt/2), dt/(1 + a dt/2) [s], dt [s]
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       real(wp), intent(inout) :: partial(:, :)   !< (4, rows_parts)
+      integer :: ud0
+      ! the first element of ud on a 64-byte boundary (where the array is now)
+      ud0 = int(modulo(-transfer(c_loc(this%ud(1)), 0_c_intptr_t), 64_c_intptr_t)/8)
       call sweep_chunks(this%nnode, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, this%xrow, this%xblk, &
-                        u, v, f, this%mdof, this%minvdof, ca, cb, dt, w, partial, this%nnode >= omp_min_nodes)
+                        u, v, f, this%mdof, this%minvdof, ca, cb, dt, w, partial, this%ud(ud0 + 1:), &
+                        this%nnode >= omp_min_nodes)
    end subroutine rows_sweep
 
-   !> The chunks, shared among threads (explicit-shape arrays: unit strides known to the compiler).
+   !> The chunks, shared among threads (explicit-shape arrays: unit strides known to the compiler):
+   !> first every chunk's nodes into ud, then (all of ud being needed by the products) the rows.
    subroutine sweep_chunks(nnode, nx, col, blk, xstart, xcol, xrow, xblk, u, v, f, mdof, minvdof, ca, cb, dt, &
-                           w, partial, par)
+                           w, partial, ud, par)
       integer, intent(in) :: nnode, nx
-      integer(i8), intent(in) :: col(ell_width, nnode), xcol(nx)
+      integer(int32), intent(in) :: col(ell_width, nnode), xcol(nx)
       real(wp), intent(in) :: blk(4, ell_width, nnode), xblk(4, nx)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx)
       real(wp), intent(in) :: u(2*nnode), mdof(2*nnode), minvdof(2*nnode), ca, cb, dt
-      real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode)
+      real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode), ud(4*nnode)
       logical, intent(in) :: par
       real(wp), intent(inout) :: partial(4, *)
       integer :: c, r0, r1
-      !$omp parallel do schedule(dynamic) if(par) private(r0, r1)
+      !$omp parallel if(par) private(r0, r1)
+      !$omp do schedule(static)
       do c = 1, (nnode + chunk_rows - 1)/chunk_rows
          r0 = (c - 1)*chunk_rows + 1
          r1 = min(c*chunk_rows, nnode)
-         call chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, u, v, f, mdof, minvdof, ca, cb, dt, &
+         call spread_u(r0, r1, u(2*r0 - 1), ud(4*r0 - 3))
+      end do
+      !$omp end do
+      !$omp do schedule(dynamic)
+      do c = 1, (nnode + chunk_rows - 1)/chunk_rows
+         r0 = (c - 1)*chunk_rows + 1
+         r1 = min(c*chunk_rows, nnode)
+         call chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, u, v, f, mdof, minvdof, ca, cb, dt, &
                     w, partial(:, c))
       end do
-      !$omp end parallel do
+      !$omp end do
+      !$omp end parallel
    end subroutine sweep_chunks
 
+   !> ud = (ux, uy, uy, ux) of the nodes r0 .. r1 (u and ud from node r0 on).
+   subroutine spread_u(r0, r1, u, ud)
+      integer, intent(in) :: r0, r1
+      real(wp), intent(in) :: u(2, r0:r1)
+      real(wp), intent(out) :: ud(4, r0:r1)
+      integer :: r
+      !GCC$ unroll 4
+      do r = r0, r1
+         ud(1, r) = u(1, r)
+         ud(2, r) = u(2, r)
+         ud(3, r) = u(2, r)
+         ud(4, r) = u(1, r)
+      end do
+   end subroutine spread_u
+
    !> Rows r0 .. r1: products, then predictor and sums on the flat dofs 2 r0 - 1 .. 2 r1.
-   subroutine chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, u, v, f, mdof, minvdof, ca, cb, dt, &
+   subroutine chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, u, v, f, mdof, minvdof, ca, cb, dt, &
                     w, part)
       integer, intent(in) :: nnode, nx, r0, r1
-      integer(i8), intent(in) :: col(ell_width, nnode), xcol(nx)
+      integer(int32), intent(in) :: col(ell_width, nnode), xcol(nx)
       real(wp), intent(in) :: blk(4, ell_width, nnode), xblk(4, nx)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx)
-      real(wp), intent(in) :: u(2*nnode), mdof(2*nnode), minvdof(2*nnode), ca, cb, dt
+      real(wp), intent(in) :: ud(4*nnode), u(2*nnode), mdof(2*nnode), minvdof(2*nnode), ca, cb, dt
       real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode)
       real(wp), intent(out) :: part(4)
-      integer :: d, r, i, k
+      integer :: d, r, i, k, l
       integer(i8) :: j
-      real(wp) :: vo, vs, wn, ek, ed, es, ea, p1, p2, p3, p4, q1, q2, q3, q4, s1, s2, s3, s4
+      real(wp) :: vo, vs, wn, ek, es, ea, p(4), q(4), s(4)
+      !GCC$ unroll 4
       do r = r0, r1
-         ! blocks 1, 4, 7 into p; 2, 5, 8 into q; 3, 6, 9 into s (ell_width = 9)
-         p1 = 0; p2 = 0; p3 = 0; p4 = 0
-         q1 = 0; q2 = 0; q3 = 0; q4 = 0
-         s1 = 0; s2 = 0; s3 = 0; s4 = 0
-         !GCC$ novector
+         ! blocks 1, 4, 7 into p; 2, 5, 8 into q; 3, 6, 9 into s (ell_width = 9), each block one
+         ! 4-wide multiply-add
+         p = 0
+         q = 0
+         s = 0
          do i = 1, ell_width, 3
-            j = col(i, r)
-            p1 = p1 + blk(1, i, r)*u(j + 1)
-            p2 = p2 + blk(2, i, r)*u(j + 1)
-            p3 = p3 + blk(3, i, r)*u(j + 2)
-            p4 = p4 + blk(4, i, r)*u(j + 2)
-            j = col(i + 1, r)
-            q1 = q1 + blk(1, i + 1, r)*u(j + 1)
-            q2 = q2 + blk(2, i + 1, r)*u(j + 1)
-            q3 = q3 + blk(3, i + 1, r)*u(j + 2)
-            q4 = q4 + blk(4, i + 1, r)*u(j + 2)
-            j = col(i + 2, r)
-            s1 = s1 + blk(1, i + 2, r)*u(j + 1)
-            s2 = s2 + blk(2, i + 2, r)*u(j + 1)
-            s3 = s3 + blk(3, i + 2, r)*u(j + 2)
-            s4 = s4 + blk(4, i + 2, r)*u(j + 2)
+            j = int(col(i, r), i8)
+            !$omp simd simdlen(4)
+            do l = 1, 4
+               p(l) = p(l) + blk(l, i, r)*ud(j + l)
+            end do
+            j = int(col(i + 1, r), i8)
+            !$omp simd simdlen(4)
+            do l = 1, 4
+               q(l) = q(l) + blk(l, i + 1, r)*ud(j + l)
+            end do
+            j = int(col(i + 2, r), i8)
+            !$omp simd simdlen(4)
+            do l = 1, 4
+               s(l) = s(l) + blk(l, i + 2, r)*ud(j + l)
+            end do
          end do
-         f(2*r - 1) = ((p1 + q1) + s1) + ((p3 + q3) + s3)
-         f(2*r) = ((p2 + q2) + s2) + ((p4 + q4) + s4)
+         !$omp simd simdlen(4)
+         do l = 1, 4
+            p(l) = (p(l) + q(l)) + s(l)
+         end do
+         !$omp simd simdlen(2)
+         do l = 1, 2
+            f(2*r - 2 + l) = p(l) + p(l + 2)
+         end do
       end do
       ! the blocks of rows longer than ell_width beyond the ninth (rare), added in order
       do k = xstart(r0), xstart(r1 + 1) - 1
          r = xrow(k)
-         j = xcol(k)
-         f(2*r - 1) = f(2*r - 1) + (xblk(1, k)*u(j + 1) + xblk(3, k)*u(j + 2))
-         f(2*r) = f(2*r) + (xblk(2, k)*u(j + 1) + xblk(4, k)*u(j + 2))
+         j = int(xcol(k), i8)
+         f(2*r - 1) = f(2*r - 1) + (xblk(1, k)*ud(j + 1) + xblk(3, k)*ud(j + 2))
+         f(2*r) = f(2*r) + (xblk(4, k)*ud(j + 1) + xblk(2, k)*ud(j + 2))
       end do
       ! predictor and sums while the chunk is in cache (as range_update of contact2d_sweep; the
-      ! vbar sum gets its factor 1/4 once per chunk)
+      ! second sum is left zero, as by the grid rows: the caller has it from the others)
       ek = 0
-      ed = 0
       es = 0
       ea = 0
-      !$omp simd private(vo, vs, wn) reduction(+:ek, ed, es, ea)
+      !$omp simd private(vo, vs, wn) reduction(+:ek, es, ea)
       do d = 2*r0 - 1, 2*r1
          vo = v(d)
          vs = ca*vo - cb*minvdof(d)*f(d)
          wn = u(d) + dt*vs
          ek = ek + mdof(d)*vs*vs
-         ed = ed + mdof(d)*(vs + vo)**2
          es = es + wn*f(d)
          ea = ea + mdof(d)*(vs - vo)**2
          v(d) = vs
          w(d) = wn
       end do
-      part = [ek, 0.25_wp*ed, es, ea]
+      part(1) = ek
+      part(2) = 0
+      part(3) = es
+      part(4) = ea
    end subroutine chunk
 end module contact2d_rows
