@@ -343,7 +343,7 @@ def section_threads(exe, out, levels, repeats):
         print(f"    load stopped: one thread {statistics.median(idle['1 thread']):.3f} s, default "
               f"{statistics.median(idle['default']):.3f} s, 2 threads {statistics.median(idle['2 threads']):.3f} s: "
               f"speed-up {r:.2f}x (default), {r2:.2f}x (2 threads)"
-              f"   [{'PASS' if r >= 1.9 else 'MISS'} >= 1.9 at k = 5-6; the other engineers' load "
+              f"   [{'PASS' if r >= 1.9 else 'MISS'} >= 1.9 at k = 5-6; other processes' load "
               f"is not under this script's control]", flush=True)
 
 
