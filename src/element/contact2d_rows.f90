@@ -21,11 +21,17 @@
 !> layout, and chunks are fixed (chunk_rows rows) with their partial sums added in chunk order
 !> by the caller, so the bits do not depend on the number of threads or on which thread does
 !> which chunk.
+!>
+!> With full = .false. (contact2d_sweep's module header) K u goes to a scratch of the chunk (in
+!> the first-level cache) instead of f, f is stored only at the kept rows (the nodes on the
+!> mesh's boundary: an edge of one element only), and the sum u~ . K u is not formed, as by the
+!> inside rows of structured meshes; the values stored and the other sums are the same bits.
 module contact2d_rows
    use, intrinsic :: iso_fortran_env, only: int32
    use contact2d_kinds, only: wp, i8
    use, intrinsic :: iso_c_binding, only: c_loc, c_intptr_t
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
+   use contact2d_mesh, only: node_elements
    implicit none
    private
    public :: rows_t
@@ -50,6 +56,10 @@ module contact2d_rows
       !> boundary on (rows_sweep), so that every node's four values are one aligned vector (no
       !> load across two cache lines) (4 nnode + 8) [mm]
       real(wp), allocatable :: ud(:)
+      !> nodes whose K u every sweep stores, full or not: those on the mesh's boundary (nnode)
+      logical, allocatable :: kept(:)
+      !> the kept rows of chunk c are krow(kstart(c) : kstart(c + 1) - 1), in increasing order
+      integer, allocatable :: kstart(:), krow(:)
    contains
       procedure :: init => rows_init
       procedure :: parts => rows_parts
@@ -65,7 +75,7 @@ contains
    subroutine rows_init(this, stiff)
       class(rows_t), intent(out) :: this
       type(stiffness_t), intent(in) :: stiff
-      integer :: r, k, i, nx
+      integer :: r, k, i, nx, c, nc
       this%nnode = stiff%nnode
       allocate (this%col(ell_width, this%nnode), this%blk(4, ell_width, this%nnode), this%xstart(this%nnode + 1))
       nx = 0
@@ -97,7 +107,46 @@ contains
       this%minvdof = 1/this%mdof
       allocate (this%ud(4*this%nnode + 8))
       this%ud = 0
+      call boundary_nodes(stiff%conn, this%nnode, this%kept)
+      nc = (this%nnode + chunk_rows - 1)/chunk_rows
+      allocate (this%kstart(nc + 1), this%krow(count(this%kept)))
+      nx = 0
+      do c = 1, nc
+         this%kstart(c) = nx + 1
+         do r = (c - 1)*chunk_rows + 1, min(c*chunk_rows, this%nnode)
+            if (.not. this%kept(r)) cycle
+            nx = nx + 1
+            this%krow(nx) = r
+         end do
+      end do
+      this%kstart(nc + 1) = nx + 1
    end subroutine rows_init
+
+   !> The nodes of the edges that belong to one element only (the mesh's boundary).
+   subroutine boundary_nodes(conn, nnode, bnd)
+      integer, intent(in) :: conn(:, :)   !< (4, nel)
+      integer, intent(in) :: nnode
+      logical, allocatable, intent(out) :: bnd(:)
+      integer, allocatable :: adj_start(:), adj_elem(:)
+      integer :: e, a, n1, n2, k, shared
+      call node_elements(conn, nnode, adj_start, adj_elem)
+      allocate (bnd(nnode))
+      bnd = .false.
+      do e = 1, size(conn, 2)
+         do a = 1, 4
+            n1 = conn(a, e)
+            n2 = conn(mod(a, 4) + 1, e)
+            shared = 0
+            do k = adj_start(n1), adj_start(n1 + 1) - 1
+               if (any(conn(:, adj_elem(k)) == n2)) shared = shared + 1
+            end do
+            if (shared == 1) then
+               bnd(n1) = .true.
+               bnd(n2) = .true.
+            end if
+         end do
+      end do
+   end subroutine boundary_nodes
 
    !> A block in the lanes of the sweep: (b11, b22, b12, b21), multiplied by (ux, uy, uy, ux).
    pure function lanes(b) result(l)
@@ -115,8 +164,9 @@ contains
    !> One sweep on a general mesh, chunk by chunk of block rows: f = K u, then on the chunk's
    !> dofs v* = ca v - cb M^-1 f (written into v), w = u + dt v* and the chunk's partial sums
    !>    (sum m v*^2, 0, sum w . f, sum m (v* - v)^2: the second sum left to the caller)
-   !> (the quantities of contact2d_sweep's module header).
-   subroutine rows_sweep(this, u, v, f, ca, cb, dt, w, partial)
+   !> (the quantities of contact2d_sweep's module header). full = .false.: f only at the kept
+   !> rows, and the third sum left zero (module header).
+   subroutine rows_sweep(this, u, v, f, ca, cb, dt, w, partial, full)
       class(rows_t), intent(inout), target :: this
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
       real(wp), intent(inout) :: v(:, :)    !< v^(n-1/2) in, v* out [mm/s]
@@ -124,28 +174,31 @@ contains
       real(wp), intent(in) :: ca, cb, dt    !< (1 - a dt/2)/(1 + a dt/2), dt/(1 + a dt/2) [s], dt [s]
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       real(wp), intent(inout) :: partial(:, :)   !< (4, rows_parts)
+      logical, intent(in) :: full           !< K u at every node and the sum u~ . K u
       integer :: ud0
       ! the first element of ud on a 64-byte boundary (where the array is now)
       ud0 = int(modulo(-transfer(c_loc(this%ud(1)), 0_c_intptr_t), 64_c_intptr_t)/8)
       call sweep_chunks(this%nnode, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, this%xrow, this%xblk, &
                         u, v, f, this%mdof, this%minvdof, ca, cb, dt, w, partial, this%ud(ud0 + 1:), &
-                        this%nnode >= omp_min_nodes)
+                        this%nnode >= omp_min_nodes, full, size(this%krow), this%kstart, this%krow)
    end subroutine rows_sweep
 
    !> The chunks, shared among threads (explicit-shape arrays: unit strides known to the compiler):
    !> first every chunk's nodes into ud, then (all of ud being needed by the products) the rows.
    subroutine sweep_chunks(nnode, nx, col, blk, xstart, xcol, xrow, xblk, u, v, f, mdof, minvdof, ca, cb, dt, &
-                           w, partial, ud, par)
-      integer, intent(in) :: nnode, nx
+                           w, partial, ud, par, full, nk, kstart, krow)
+      integer, intent(in) :: nnode, nx, nk
       integer(int32), intent(in) :: col(ell_width, nnode), xcol(nx)
       real(wp), intent(in) :: blk(4, ell_width, nnode), xblk(4, nx)
-      integer, intent(in) :: xstart(nnode + 1), xrow(nx)
+      integer, intent(in) :: xstart(nnode + 1), xrow(nx), kstart(*), krow(nk)
       real(wp), intent(in) :: u(2*nnode), mdof(2*nnode), minvdof(2*nnode), ca, cb, dt
       real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode), ud(4*nnode)
-      logical, intent(in) :: par
+      logical, intent(in) :: par, full
       real(wp), intent(inout) :: partial(4, *)
-      integer :: c, r0, r1
-      !$omp parallel if(par) private(r0, r1)
+      integer :: c, r0, r1, k, r
+      !> K u of the chunk on steps that are not full (first-level cache; a fixed size, no allocation)
+      real(wp) :: g(2*chunk_rows)
+      !$omp parallel if(par) private(r0, r1, k, r, g)
       !$omp do schedule(static)
       do c = 1, (nnode + chunk_rows - 1)/chunk_rows
          r0 = (c - 1)*chunk_rows + 1
@@ -157,8 +210,21 @@ contains
       do c = 1, (nnode + chunk_rows - 1)/chunk_rows
          r0 = (c - 1)*chunk_rows + 1
          r1 = min(c*chunk_rows, nnode)
-         call chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, u, v, f, mdof, minvdof, ca, cb, dt, &
-                    w, partial(:, c))
+         if (full) then
+            call products(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, f(2*r0 - 1))
+            call predict_full(2*(r1 - r0 + 1), u(2*r0 - 1), v(2*r0 - 1), f(2*r0 - 1), mdof(2*r0 - 1), &
+                              minvdof(2*r0 - 1), ca, cb, dt, w(2*r0 - 1), partial(:, c))
+         else
+            call products(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, g)
+            call predict(2*(r1 - r0 + 1), u(2*r0 - 1), v(2*r0 - 1), g, mdof(2*r0 - 1), &
+                         minvdof(2*r0 - 1), ca, cb, dt, w(2*r0 - 1), partial(:, c))
+            ! K u at the kept rows
+            do k = kstart(c), kstart(c + 1) - 1
+               r = krow(k)
+               f(2*r - 1) = g(2*(r - r0) + 1)
+               f(2*r) = g(2*(r - r0) + 2)
+            end do
+         end if
       end do
       !$omp end do
       !$omp end parallel
@@ -179,19 +245,17 @@ contains
       end do
    end subroutine spread_u
 
-   !> Rows r0 .. r1: products, then predictor and sums on the flat dofs 2 r0 - 1 .. 2 r1.
-   subroutine chunk(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, u, v, f, mdof, minvdof, ca, cb, dt, &
-                    w, part)
+   !> K u of the rows r0 .. r1 into g (g(1:2) the row r0).
+   subroutine products(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, g)
       integer, intent(in) :: nnode, nx, r0, r1
       integer(int32), intent(in) :: col(ell_width, nnode), xcol(nx)
       real(wp), intent(in) :: blk(4, ell_width, nnode), xblk(4, nx)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx)
-      real(wp), intent(in) :: ud(4*nnode), u(2*nnode), mdof(2*nnode), minvdof(2*nnode), ca, cb, dt
-      real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode)
-      real(wp), intent(out) :: part(4)
-      integer :: d, r, i, k, l
+      real(wp), intent(in) :: ud(4*nnode)
+      real(wp), intent(inout) :: g(2*r0 - 1:2*r1)
+      integer :: r, i, k, l
       integer(i8) :: j
-      real(wp) :: vo, vs, wn, ek, es, ea, p(4), q(4), s(4)
+      real(wp) :: p(4), q(4), s(4)
       !GCC$ unroll 4
       do r = r0, r1
          ! blocks 1, 4, 7 into p; 2, 5, 8 into q; 3, 6, 9 into s (ell_width = 9), each block one
@@ -222,23 +286,33 @@ contains
          end do
          !$omp simd simdlen(2)
          do l = 1, 2
-            f(2*r - 2 + l) = p(l) + p(l + 2)
+            g(2*r - 2 + l) = p(l) + p(l + 2)
          end do
       end do
       ! the blocks of rows longer than ell_width beyond the ninth (rare), added in order
       do k = xstart(r0), xstart(r1 + 1) - 1
          r = xrow(k)
          j = int(xcol(k), i8)
-         f(2*r - 1) = f(2*r - 1) + (xblk(1, k)*ud(j + 1) + xblk(3, k)*ud(j + 2))
-         f(2*r) = f(2*r) + (xblk(4, k)*ud(j + 1) + xblk(2, k)*ud(j + 2))
+         g(2*r - 1) = g(2*r - 1) + (xblk(1, k)*ud(j + 1) + xblk(3, k)*ud(j + 2))
+         g(2*r) = g(2*r) + (xblk(4, k)*ud(j + 1) + xblk(2, k)*ud(j + 2))
       end do
-      ! predictor and sums while the chunk is in cache (as range_update of contact2d_sweep; the
-      ! second sum is left zero, as by the grid rows: the caller has it from the others)
+   end subroutine products
+
+   !> Predictor and sums on the n flat dofs of a chunk while it is in cache (as row_update of
+   !> contact2d_sweep; the second sum is left zero, as by the grid rows: the caller has it from
+   !> the others).
+   subroutine predict_full(n, u, v, f, mdof, minvdof, ca, cb, dt, w, part)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: u(n), f(n), mdof(n), minvdof(n), ca, cb, dt
+      real(wp), intent(inout) :: v(n), w(n)
+      real(wp), intent(out) :: part(4)
+      integer :: d
+      real(wp) :: vo, vs, wn, ek, es, ea
       ek = 0
       es = 0
       ea = 0
       !$omp simd private(vo, vs, wn) reduction(+:ek, es, ea)
-      do d = 2*r0 - 1, 2*r1
+      do d = 1, n
          vo = v(d)
          vs = ca*vo - cb*minvdof(d)*f(d)
          wn = u(d) + dt*vs
@@ -252,5 +326,30 @@ contains
       part(2) = 0
       part(3) = es
       part(4) = ea
-   end subroutine chunk
+   end subroutine predict_full
+
+   !> The same without the sum u~ . K u (left zero).
+   subroutine predict(n, u, v, f, mdof, minvdof, ca, cb, dt, w, part)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: u(n), f(n), mdof(n), minvdof(n), ca, cb, dt
+      real(wp), intent(inout) :: v(n), w(n)
+      real(wp), intent(out) :: part(4)
+      integer :: d
+      real(wp) :: vo, vs, ek, ea
+      ek = 0
+      ea = 0
+      !$omp simd private(vo, vs) reduction(+:ek, ea)
+      do d = 1, n
+         vo = v(d)
+         vs = ca*vo - cb*minvdof(d)*f(d)
+         ek = ek + mdof(d)*vs*vs
+         ea = ea + mdof(d)*(vs - vo)**2
+         v(d) = vs
+         w(d) = u(d) + dt*vs
+      end do
+      part(1) = ek
+      part(2) = 0
+      part(3) = 0
+      part(4) = ea
+   end subroutine predict
 end module contact2d_rows

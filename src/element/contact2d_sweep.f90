@@ -5,9 +5,10 @@
 !>    v* = ca v^(n-1/2) - cb M^-1 K u^n,   u~ = u^n + dt v*   (v overwritten by v*),
 !>    partial = (sum m v*^2, sum m ((v* + v^(n-1/2))/2)^2, sum u~ . K u^n, sum m (v* - v^(n-1/2))^2).
 !>
-!> With full = .false. the inside rows of structured meshes neither store K u at their interior
-!> nodes (sweep_t%kept: where it is always stored) nor form the third sum: the steps on which
-!> nobody reads them (contact2d_explicit).
+!> With full = .false. the inside rows of structured meshes, and the block rows of general ones
+!> but at the mesh's boundary, neither store K u at their interior nodes (sweep_t%kept: where it
+!> is always stored) nor form the third sum: the steps on which nobody reads them
+!> (contact2d_explicit).
 !>
 !> The grid rows of structured meshes leave the second sum zero: the caller has it from the
 !> others and sum m (v^(n-1/2))^2, (a + b)^2 = 2 a^2 + 2 b^2 - (a - b)^2 (contact2d_explicit).
@@ -176,18 +177,20 @@ contains
                          u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
                          this%scr, this%nscr, all_out)
       else
-         call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial)
+         call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial, all_out)
       end if
    end subroutine sweep_step
 
-   !> Is K u at this node stored by every sweep, full or not (module header)? On structured
-   !> meshes the boundary nodes; on general meshes all.
+   !> Is K u at this node stored by every sweep, full or not (module header)? The boundary
+   !> nodes (general meshes: contact2d_rows).
    pure logical function sweep_kept(this, node) result(yes)
       class(sweep_t), intent(in) :: this
       integer, intent(in) :: node
       integer :: i, j
-      yes = .true.
-      if (.not. this%structured) return
+      if (.not. this%structured) then
+         yes = this%rows%kept(node)
+         return
+      end if
       i = mod(node - 1, this%nx + 1)
       j = (node - 1)/(this%nx + 1)
       yes = i == 0 .or. i == this%nx .or. j == 0 .or. j == this%ny
