@@ -242,7 +242,7 @@ contains
             call model%load%prescribe(nodes, comp, id, conflict)
             if (conflict /= 0) then
                stat = 1
-               errmsg = where//'node '//str(conflict)//' ('//str(model%mesh%x(1, conflict))//', '// &
+               errmsg = where//'node '//str(model%mesh%file_id(conflict))//' ('//str(model%mesh%x(1, conflict))//', '// &
                         str(model%mesh%x(2, conflict))//') component '//trim(cfg%component)// &
                         ' is already prescribed with another load curve'
                return

@@ -66,6 +66,7 @@ contains
       character(len=*), intent(in), optional :: sidecar, target
       integer(hid_t) :: root, g
       integer :: k
+      real(wp), allocatable :: mass(:, :)
 
       this%xdmf = deck%output%xdmf
       this%xmf_path = sidecar_name(path)
@@ -96,15 +97,16 @@ contains
       call this%file%attr(root, 'status', 'running')
 
       g = this%file%group(root, 'mesh')
-      call this%file%dataset(g, 'coordinates', model%mesh%x, 'mm')
-      call this%file%dataset(g, 'connectivity', model%mesh%conn, '1')
-      call this%file%dataset(g, 'mass', model%stiff%mass, 't')
+      call this%file%dataset(g, 'coordinates', model%mesh%file_order(model%mesh%x), 'mm')
+      call this%file%dataset(g, 'connectivity', model%mesh%file_id(model%mesh%conn), '1')
+      mass = model%mesh%file_order(reshape(model%stiff%mass, [1, model%mesh%nnode]))
+      call this%file%dataset(g, 'mass', mass(1, :), 't')
       call this%file%close_group(g)
 
       if (model%contact%active) then
          associate (c => model%contact)
             g = this%file%group(root, 'contact')
-            call this%file%dataset(g, 'nodes', c%node, '1')
+            call this%file%dataset(g, 'nodes', model%mesh%file_id(c%node), '1')
             call this%file%dataset(g, 'abscissa', c%abscissa, 'mm')
             call this%file%dataset(g, 'weight', c%weight, 'mm')
             call this%file%dataset(g, 'gap', c%gap, 'mm')
@@ -168,7 +170,7 @@ contains
       g = this%file%group(fields, str(solver%step))
       call this%file%attr(g, 'time', solver%time)
       call this%file%attr(g, 'step', int(solver%step))
-      call this%file%dataset(g, 'displacement', solver%u, 'mm')
+      call this%file%dataset(g, 'displacement', model%mesh%file_order(solver%u), 'mm')
       if (model%contact%active) then
          call this%file%dataset(g, 'contact_normal_force', model%contact%fn, 'N')
          call this%file%dataset(g, 'contact_tangential_force', model%contact%ft, 'N')
@@ -230,10 +232,10 @@ contains
       end do
       reaction = (solver%fint - solver%fext)*(1 - model%load%free)
       g = this%file%group(root, 'final')
-      call this%file%dataset(g, 'displacement', solver%u, 'mm')
-      call this%file%dataset(g, 'velocity', solver%v, 'mm/s')
+      call this%file%dataset(g, 'displacement', model%mesh%file_order(solver%u), 'mm')
+      call this%file%dataset(g, 'velocity', model%mesh%file_order(solver%v), 'mm/s')
       call this%file%dataset(g, 'stress', stress, 'MPa')
-      call this%file%dataset(g, 'reaction', reaction, 'N')
+      call this%file%dataset(g, 'reaction', model%mesh%file_order(reaction), 'N')
       if (model%contact%active) call write_final_contact(this, g, model)
       call this%file%close_group(g)
       call this%file%close()

@@ -16,6 +16,7 @@ module contact2d_gmsh
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str
    use contact2d_mesh, only: mesh_t
+   use contact2d_renumber, only: rcm_order
    implicit none
    private
    public :: gmsh_read
@@ -344,7 +345,7 @@ contains
       integer(c_int), pointer :: types(:), dimtags(:), ents(:)
       integer(c_size_t), pointer :: tags(:), etags(:), enodes(:)
       real(c_double), pointer :: coord(:)
-      integer, allocatable :: local(:), conn(:, :), used(:), seg(:, :), gstart(:), elem_id(:)
+      integer, allocatable :: local(:), conn(:, :), used(:), seg(:, :), gstart(:), elem_id(:), perm(:)
       real(wp), allocatable :: x(:, :)
       character(len=64), allocatable :: names(:)
       integer(c_size_t) :: maxtag
@@ -476,6 +477,9 @@ contains
       call mesh%init_arrays(x, conn)
       mesh%elem_id = elem_id
       call mesh%set_groups(names, gstart, seg(:, 1:nseg))
+      ! nodes in reverse Cuthill-McKee order for the sweep's locality (outputs keep the file's)
+      call rcm_order(mesh%conn, mesh%nnode, perm)
+      call mesh%renumber(perm)
       stat = 0
       errmsg = ''
    end subroutine collect

@@ -29,6 +29,10 @@ module contact2d_mesh
       integer, allocatable :: gstart(:)
       integer, allocatable :: gseg(:, :)
       logical, allocatable :: gboundary(:)   !< the group edge belongs to one element only
+      !> number of each node in the mesh file's order (Gmsh: 1..n in increasing tag) when the
+      !> nodes were renumbered at reading (renumber); absent: the same as its id. Outputs are
+      !> written in the file's order (docs/output.md).
+      integer, allocatable :: file_node(:)
    contains
       procedure :: init_rectangle => mesh_init_rectangle
       procedure :: init_arrays => mesh_init_arrays
@@ -43,6 +47,9 @@ module contact2d_mesh
       procedure :: group_chain => mesh_group_chain
       procedure :: orient => mesh_orient
       procedure :: id_of => mesh_id_of
+      procedure :: renumber => mesh_renumber
+      procedure :: file_id => mesh_file_id
+      procedure :: file_order => mesh_file_order
    end type mesh_t
 
 contains
@@ -419,6 +426,46 @@ contains
       stat = 0
       errmsg = ''
    end subroutine mesh_orient
+   !> Renumber the nodes: node k becomes the old node perm(k) (coordinates, connectivity, groups;
+   !> file_node keeps each node's number in the file's order).
+   subroutine mesh_renumber(this, perm)
+      class(mesh_t), intent(inout) :: this
+      integer, intent(in) :: perm(:)   !< (nnode) a permutation of 1..nnode
+      integer, allocatable :: newid(:)
+      integer :: k
+      allocate (newid(this%nnode))
+      do k = 1, this%nnode
+         newid(perm(k)) = k
+      end do
+      if (.not. allocated(this%file_node)) this%file_node = [(k, k=1, this%nnode)]
+      this%file_node = this%file_node(perm)
+      this%x = this%x(:, perm)
+      this%conn = reshape(newid(pack(this%conn, .true.)), shape(this%conn))
+      if (allocated(this%gseg)) then
+         if (size(this%gseg) > 0) this%gseg = reshape(newid(pack(this%gseg, .true.)), shape(this%gseg))
+      end if
+   end subroutine mesh_renumber
+
+   !> The number in the file's order of node n (file_node; n itself if not renumbered).
+   elemental integer function mesh_file_id(this, n) result(id)
+      class(mesh_t), intent(in) :: this
+      integer, intent(in) :: n
+      id = n
+      if (allocated(this%file_node)) id = this%file_node(n)
+   end function mesh_file_id
+
+   !> A nodal field (k, nnode) with its columns in the file's order of the nodes (for output).
+   pure function mesh_file_order(this, a) result(b)
+      class(mesh_t), intent(in) :: this
+      real(wp), intent(in) :: a(:, :)
+      real(wp) :: b(size(a, 1), size(a, 2))
+      if (allocated(this%file_node)) then
+         b(:, this%file_node) = a
+      else
+         b = a
+      end if
+   end function mesh_file_order
+
    !> Node -> element adjacency in compressed form: the elements holding node n are
    !> adj_elem(adj_start(n) : adj_start(n+1) - 1), in increasing element order.
    pure subroutine node_elements(conn, nnode, adj_start, adj_elem)
