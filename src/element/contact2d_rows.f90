@@ -245,7 +245,10 @@ contains
       end do
    end subroutine spread_u
 
-   !> K u of the rows r0 .. r1 into g (g(1:2) the row r0).
+   !> K u of the rows r0 .. r1 into g (g(1:2) the row r0). A row's blocks 1, 4, 7 go into p;
+   !> 2, 5, 8 into q; 3, 6, 9 into s (ell_width = 9), each block one 4-wide multiply-add; its
+   !> outputs are the lanes (1, 2) + (3, 4) of (p + q) + s. Rows by pairs, so that the outputs of
+   !> two rows are one 4-wide add (the same bits as row by row).
    subroutine products(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, g)
       integer, intent(in) :: nnode, nx, r0, r1
       integer(int32), intent(in) :: col(ell_width, nnode), xcol(nx)
@@ -253,13 +256,11 @@ contains
       integer, intent(in) :: xstart(nnode + 1), xrow(nx)
       real(wp), intent(in) :: ud(4*nnode)
       real(wp), intent(inout) :: g(2*r0 - 1:2*r1)
-      integer :: r, i, k, l
+      integer :: r, i, k, l, rr
       integer(i8) :: j
-      real(wp) :: p(4), q(4), s(4)
-      !GCC$ unroll 4
-      do r = r0, r1
-         ! blocks 1, 4, 7 into p; 2, 5, 8 into q; 3, 6, 9 into s (ell_width = 9), each block one
-         ! 4-wide multiply-add
+      real(wp) :: p(4), q(4), s(4), p2(4), q2(4), s2(4), a(4), b(4)
+      do r = r0, r1 - 1, 2
+         rr = r + 1
          p = 0
          q = 0
          s = 0
@@ -284,11 +285,72 @@ contains
          do l = 1, 4
             p(l) = (p(l) + q(l)) + s(l)
          end do
-         !$omp simd simdlen(2)
-         do l = 1, 2
-            g(2*r - 2 + l) = p(l) + p(l + 2)
+         p2 = 0
+         q2 = 0
+         s2 = 0
+         do i = 1, ell_width, 3
+            j = int(col(i, rr), i8)
+            !$omp simd simdlen(4)
+            do l = 1, 4
+               p2(l) = p2(l) + blk(l, i, rr)*ud(j + l)
+            end do
+            j = int(col(i + 1, rr), i8)
+            !$omp simd simdlen(4)
+            do l = 1, 4
+               q2(l) = q2(l) + blk(l, i + 1, rr)*ud(j + l)
+            end do
+            j = int(col(i + 2, rr), i8)
+            !$omp simd simdlen(4)
+            do l = 1, 4
+               s2(l) = s2(l) + blk(l, i + 2, rr)*ud(j + l)
+            end do
+         end do
+         !$omp simd simdlen(4)
+         do l = 1, 4
+            p2(l) = (p2(l) + q2(l)) + s2(l)
+         end do
+         a(1) = p(1)
+         a(2) = p(2)
+         a(3) = p2(1)
+         a(4) = p2(2)
+         b(1) = p(3)
+         b(2) = p(4)
+         b(3) = p2(3)
+         b(4) = p2(4)
+         !$omp simd simdlen(4)
+         do l = 1, 4
+            g(2*r - 2 + l) = a(l) + b(l)
          end do
       end do
+      if (mod(r1 - r0 + 1, 2) == 1) then
+         r = r1
+         p = 0
+         q = 0
+         s = 0
+         do i = 1, ell_width, 3
+            j = int(col(i, r), i8)
+            !$omp simd simdlen(4)
+            do l = 1, 4
+               p(l) = p(l) + blk(l, i, r)*ud(j + l)
+            end do
+            j = int(col(i + 1, r), i8)
+            !$omp simd simdlen(4)
+            do l = 1, 4
+               q(l) = q(l) + blk(l, i + 1, r)*ud(j + l)
+            end do
+            j = int(col(i + 2, r), i8)
+            !$omp simd simdlen(4)
+            do l = 1, 4
+               s(l) = s(l) + blk(l, i + 2, r)*ud(j + l)
+            end do
+         end do
+         !$omp simd simdlen(4)
+         do l = 1, 4
+            p(l) = (p(l) + q(l)) + s(l)
+         end do
+         g(2*r1 - 1) = p(1) + p(3)
+         g(2*r1) = p(2) + p(4)
+      end if
       ! the blocks of rows longer than ell_width beyond the ninth (rare), added in order
       do k = xstart(r0), xstart(r1 + 1) - 1
          r = xrow(k)
