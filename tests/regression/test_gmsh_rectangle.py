@@ -78,6 +78,46 @@ def body(t):
         t.check_close(run, "%s: displacement = the .geo run's" % fmt, g["u"][pm_], um, atol=1e-12 * umax,
                       reason="the same mesh and problem")
         t.check_close(run, "%s: pressure = the .geo run's" % fmt, g["p"], pm, atol=1e-12 * pmax, reason="as above")
+        if fmt == "msh22":
+            # outputs number the nodes 1..n in increasing tag of the file (docs/geometry.md), though
+            # the solver renumbers them inside: the file's own quads and nodes, read here
+            # (level 0: the file's own quads, unrefined; one step is enough)
+            nodes, quads = read_msh22(msh)
+            tags = sorted({n for q in quads for n in q})
+            rank = {tag: i + 1 for i, tag in enumerate(tags)}
+            run = t.run(t.deck("gmsh_rectangle_%s.nml" % mult), "--set", "mesh:file='%s'" % msh,
+                        "--set", "mesh:level=0", "--set", "solver:max_steps=1", cwd=os.path.dirname(msh),
+                        output="level0.h5")
+            t.expect_exit(run, 0)
+            with run.open() as f:
+                xm, conn = f["mesh/coordinates"][()], f["mesh/connectivity"][()]
+            t.check_close(run, "msh22: coordinates in increasing tag", np.array([nodes[k] for k in tags]), xm,
+                          atol=0.0, reason="the same numbers, copied")
+            t.check_equal(run, "msh22: connectivity = the file's quads (as node sets, in file order)",
+                          [sorted(rank[n] for n in q) for q in quads], [sorted(c) for c in conn.tolist()])
+
+
+def read_msh22(path):
+    """Nodes {tag: (x, y)} and 4-node quadrilaterals (type 3, in file order) of an MSH 2.2 file."""
+    nodes, quads, section = {}, [], None
+    with open(path) as fh:
+        for line in fh:
+            w = line.split()
+            if not w:
+                continue
+            if w[0].startswith("$"):
+                section = None if w[0].startswith("$End") else w[0]
+                count = True
+                continue
+            if section in ("$Nodes", "$Elements") and count:
+                count = False   # the count line
+                continue
+            if section == "$Nodes":
+                nodes[int(w[0])] = (float(w[1]), float(w[2]))
+            elif section == "$Elements" and int(w[1]) == 3:
+                ntag = int(w[2])
+                quads.append([int(v) for v in w[3 + ntag:3 + ntag + 4]])
+    return nodes, quads
 
 
 if __name__ == "__main__":
