@@ -198,7 +198,8 @@ contains
                          scr, nscr, full)
       integer, intent(in) :: nx, ny
       real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
-      real(wp), intent(in) :: rmass(:, :), rcbm(:, :)
+      ! (contiguous: the rows passed on need no contiguity test or packing per row)
+      real(wp), intent(in), contiguous :: rmass(:, :), rcbm(:, :)
       integer, intent(in) :: rclass(0:ny)
       real(wp), intent(in) :: u(2, 0:nx, 0:ny)
       real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
