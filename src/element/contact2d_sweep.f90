@@ -373,7 +373,8 @@ contains
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
       logical, intent(in) :: full   !< store f and form the u~ . f sum at the interior outputs
-      integer :: b, l, p, nb, k
+      integer :: b, l, p, nb, k, i
+      integer, parameter :: nu = 2   !< blocks per loop step (steps without K u)
       real(wp) :: fp, vo, vs, wn, ek, es, ea, ek4(0:3), es4(0:3), ea4(0:3)
       ! (array elements for the explicit-shape dummies: no temporaries)
       call end_node(e(1, 1, -1, 1), um(0), u0(0), up(0), f(0))
@@ -424,33 +425,25 @@ contains
                end do
             end do
          else
-            ! the same without f and the u~ . f sum; blocks by pairs (one loop step for two)
-            do b = 0, nb - 2, 2
+            ! the same without f and the u~ . f sum; blocks by groups of nu (one loop step for nu)
+            do b = 0, nb - nu, nu
                !$omp simd private(p, fp, vo, vs)
                do l = 0, 3
-                  p = 2 + 4*b + l
-                  fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
-                        + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
-                       + q(l, 5)*(eb(p + 2) - eb(p - 2))
-                  vo = v(p)
-                  vs = ca*vo - cbm(p)*fp
-                  ek4(l) = ek4(l) + m(p)*vs*vs
-                  ea4(l) = ea4(l) + m(p)*(vs - vo)**2
-                  v(p) = vs
-                  w(p) = u0(p) + dt*vs
-                  p = p + 4
-                  fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
-                        + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
-                       + q(l, 5)*(eb(p + 2) - eb(p - 2))
-                  vo = v(p)
-                  vs = ca*vo - cbm(p)*fp
-                  ek4(l) = ek4(l) + m(p)*vs*vs
-                  ea4(l) = ea4(l) + m(p)*(vs - vo)**2
-                  v(p) = vs
-                  w(p) = u0(p) + dt*vs
+                  do i = 0, nu - 1
+                     p = 2 + 4*(b + i) + l
+                     fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
+                           + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
+                          + q(l, 5)*(eb(p + 2) - eb(p - 2))
+                     vo = v(p)
+                     vs = ca*vo - cbm(p)*fp
+                     ek4(l) = ek4(l) + m(p)*vs*vs
+                     ea4(l) = ea4(l) + m(p)*(vs - vo)**2
+                     v(p) = vs
+                     w(p) = u0(p) + dt*vs
+                  end do
                end do
                !$omp simd private(p)
-               do k = 0, 6, 2
+               do k = 0, 4*nu - 2, 2
                   p = 2 + 4*b + k
                   sn(p) = u0(p) + u2(p)
                   sn(p + 1) = u0(p + 1) + u2(p + 1)
@@ -458,7 +451,7 @@ contains
                   en(p + 1) = u2(p) - u0(p)
                end do
             end do
-            do b = 2*(nb/2), nb - 1
+            do b = nu*(nb/nu), nb - 1
                !$omp simd private(p, fp, vo, vs)
                do l = 0, 3
                   p = 2 + 4*b + l
