@@ -73,6 +73,11 @@ module contact2d_explicit
       ! automatic damping: u and K u at the last estimate
       real(wp), allocatable :: u_mark(:, :), f_mark(:, :), work(:, :)
       integer, allocatable :: pres_elements(:)   !< elements touching a prescribed dof
+      !> the dofs of pres_elements (flattened), where K du_p is not zero
+      integer, allocatable :: pres_dofs(:)
+      !> per dof (flattened): 1 free, 0 prescribed, -1 free among pres_dofs (rayleigh_blocks)
+      real(wp), allocatable :: rmask(:)
+      real(wp), allocatable :: kdu(:, :)   !< K du_f at pres_dofs (update_damping) [N]
       ! energies (SPEC section 6) [mJ = N mm]
       real(wp) :: kinetic = 0              !< 1/2 v^(n+1/2) M v^(n+1/2)
       real(wp) :: strain = 0               !< 1/2 u^(n+1) K u^n (current when advance returns)
@@ -80,9 +85,10 @@ module contact2d_explicit
       real(wp) :: work_in = 0              !< sum of |external work increments|
       real(wp) :: damping_dissipation = 0
       real(wp) :: initial_kinetic = 0      !< 1/2 v^(-1/2) M v^(-1/2), energy put in at t = 0 (issue 12)
-      !> sum m (v^(n-1/2))^2 (twice the kinetic energy of the last step; formed again from v at
-      !> the start of every advance, so that a velocity set between calls counts)
+      !> sum m (v^(n-1/2))^2: twice the kinetic energy of the last step, formed from v by the
+      !> next advance when vsum_stale (set it when v is changed between advance calls)
       real(wp) :: vsum = 0
+      logical :: vsum_stale = .true.
       logical :: blown_up = .false.
       !> sum m (v^(n+1/2) - v^(n-1/2))^2 / sum m (v^(n+1/2))^2 of the last step: close to 4
       !> for a mode that changes sign every step (the one that grows when dt is too long)
@@ -114,8 +120,8 @@ contains
       type(loading_t), intent(in) :: load
       real(wp), intent(in) :: dt, alpha
       integer, intent(in) :: damping, damping_interval
-      integer :: nnode, e
-      logical, allocatable :: touches(:)
+      integer :: nnode, e, a, n
+      logical, allocatable :: touches(:), mark(:, :)
 
       nnode = size(stiff%mass)
       this%nnode = nnode
@@ -145,6 +151,18 @@ contains
             touches(e) = any(load%free(:, stiff%conn(:, e)) == 0)
          end do
          this%pres_elements = pack([(e, e=1, size(touches))], touches)
+         ! the dofs where K du_p is not zero, and the mask of rayleigh_blocks
+         allocate (mark(2, nnode))
+         mark = .false.
+         do e = 1, size(this%pres_elements)
+            do a = 1, size(stiff%conn, 1)
+               mark(:, stiff%conn(a, this%pres_elements(e))) = .true.
+            end do
+         end do
+         this%pres_dofs = pack([(n, n=1, 2*nnode)], reshape(mark, [2*nnode]))
+         this%rmask = reshape(merge(-load%free, load%free, mark .and. load%free > 0), [2*nnode])
+         allocate (this%kdu(2, nnode))
+         this%kdu = 0
       end if
    end subroutine explicit_init
 
@@ -165,7 +183,8 @@ contains
       ! set-up, outside the step loop: the dofs that change after the sweep
       if (.not. allocated(this%sdof) .or. this%s_ncontact /= merge(contact%nc, 0, contact%active)) &
          call special_dofs(this, load, contact)
-      this%vsum = mass_sum(2*this%nnode, this%mdof, this%v)
+      if (this%vsum_stale) this%vsum = mass_sum(2*this%nnode, this%mdof, this%v)
+      this%vsum_stale = .false.
       dt = this%dt
       full = .true.
       do k = 1, nsteps
@@ -460,25 +479,29 @@ contains
    !> the Rayleigh quotient of the free part du_f of the displacement increment since the last
    !> estimate, du_f^T K du_f / du_f^T M du_f. Called right after f_int = K u^n, so (u, f_int)
    !> and the stored mark are consistent pairs: K du_f = (f_int - f_mark) - K du_p, and K du_p
-   !> only involves the elements that touch a prescribed dof.
+   !> only involves the elements that touch a prescribed dof. K du_f is formed apart on their
+   !> dofs only (kdu) and put in f_mark as -K du_f; one pass over all dofs then takes
+   !> f_int - f_mark elsewhere, and f_mark itself there (rayleigh_blocks).
    subroutine explicit_update_damping(this, stiff, load)
       class(explicit_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
       type(loading_t), intent(in) :: load
       real(wp) :: num, den
       integer :: p, b
-      ! K du = f_int - f_mark; then subtract K du_p, du_p being zero but on the prescribed dofs
-      call block_difference(2*this%nnode, this%nblock, this%fint, this%f_mark)
+      ! K du = f_int - f_mark on the dofs of the elements that touch a prescribed dof; then
+      ! subtract K du_p there, du_p being zero but on the prescribed dofs
+      call pres_difference(size(this%pres_dofs), this%pres_dofs, this%fint, this%f_mark, this%kdu)
       do p = 1, load%npres
          this%work(load%pcomp(p), load%pnode(p)) = this%u(load%pcomp(p), load%pnode(p)) &
                                                    - this%u_mark(load%pcomp(p), load%pnode(p))
       end do
-      call stiff%apply_elements(this%pres_elements, this%work, this%f_mark, subtract=.true.)
+      call stiff%apply_elements(this%pres_elements, this%work, this%kdu, subtract=.true.)
       do p = 1, load%npres
          this%work(load%pcomp(p), load%pnode(p)) = 0
       end do
+      call pres_negate(size(this%pres_dofs), this%pres_dofs, this%kdu, this%f_mark)
       ! du_f^T K du_f and du_f^T M du_f by blocks; the marks move to (u, f_int)
-      call rayleigh_blocks(2*this%nnode, this%nblock, this%u, this%fint, load%free, this%mdof, &
+      call rayleigh_blocks(2*this%nnode, this%nblock, this%u, this%fint, this%rmask, this%mdof, &
                            this%u_mark, this%f_mark, this%partial)
       num = 0
       den = 0
@@ -489,26 +512,36 @@ contains
       if (num > 0 .and. den > 0) this%alpha_next = min(2*sqrt(num/den), 2/this%dt)
    end subroutine explicit_update_damping
 
-   !> d = a - d on the flattened dofs.
-   subroutine block_difference(ndof, nblock, a, d)
-      integer, intent(in) :: ndof, nblock
-      real(wp), intent(in) :: a(ndof)
-      real(wp), intent(inout) :: d(ndof)
-      integer :: b, i
-      !$omp parallel do schedule(static) private(i) if(ndof >= 2*omp_min_nodes)
-      do b = 1, nblock
-         do i = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
-            d(i) = a(i) - d(i)
-         end do
+   !> d = a - f at the listed dofs (flattened arrays).
+   subroutine pres_difference(n, dof, a, f, d)
+      integer, intent(in) :: n, dof(n)
+      real(wp), intent(in) :: a(*), f(*)
+      real(wp), intent(inout) :: d(*)
+      integer :: q
+      do q = 1, n
+         d(dof(q)) = a(dof(q)) - f(dof(q))
       end do
-      !$omp end parallel do
-   end subroutine block_difference
+   end subroutine pres_difference
 
-   !> Per block: sum of du_f kdu and of m du_f^2 with du_f = (u - u_mark) free; then u_mark = u,
-   !> f_mark = f_int. Block sums are added in order by the caller (thread-independent bits).
-   subroutine rayleigh_blocks(ndof, nblock, u, fint, free, mdof, u_mark, f_mark, partial)
+   !> f = -d at the listed dofs (flattened arrays).
+   subroutine pres_negate(n, dof, d, f)
+      integer, intent(in) :: n, dof(n)
+      real(wp), intent(in) :: d(*)
+      real(wp), intent(inout) :: f(*)
+      integer :: q
+      do q = 1, n
+         f(dof(q)) = -d(dof(q))
+      end do
+   end subroutine pres_negate
+
+   !> Per block: sum of du_f kdu and of m du_f^2 with du_f = (u - u_mark) |mask| and
+   !> kdu = max(mask, 0) f_int - f_mark: f_int - f_mark where mask = 1 (exact: 1 f_int = f_int),
+   !> -f_mark where mask = -1 (exact: 0 f_int - f_mark, also if contracted to an FMA), du_f = 0
+   !> where mask = 0; then u_mark = u, f_mark = f_int. Block sums are added in order by the
+   !> caller (thread-independent bits).
+   subroutine rayleigh_blocks(ndof, nblock, u, fint, mask, mdof, u_mark, f_mark, partial)
       integer, intent(in) :: ndof, nblock
-      real(wp), intent(in) :: u(ndof), fint(ndof), free(ndof), mdof(ndof)
+      real(wp), intent(in) :: u(ndof), fint(ndof), mask(ndof), mdof(ndof)
       real(wp), intent(inout) :: u_mark(ndof), f_mark(ndof)
       real(wp), intent(inout) :: partial(4, nblock)
       integer :: b, i
@@ -519,8 +552,8 @@ contains
          den = 0
          !$omp simd private(du) reduction(+:num, den)
          do i = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
-            du = (u(i) - u_mark(i))*free(i)
-            num = num + du*f_mark(i)
+            du = (u(i) - u_mark(i))*abs(mask(i))
+            num = num + du*(max(mask(i), 0.0_wp)*fint(i) - f_mark(i))
             den = den + mdof(i)*du*du
             u_mark(i) = u(i)
             f_mark(i) = fint(i)
