@@ -25,6 +25,9 @@ module contact2d_contact
    integer, parameter :: multiplier_p1 = 1, multiplier_p0 = 0
    !> |F_t| >= (1 - slip_tol) s_i w_i counts as slip in the status (SPEC section 3).
    real(wp), parameter :: slip_tol = 1.0e-8_wp
+   !> rows of contact_t%rec
+   integer, parameter :: rec_nx = 1, rec_ny = 2, rec_tx = 3, rec_ty = 4, rec_gap = 5, rec_mass = 6, &
+                         rec_cmass = 7, rec_slides = 8, nrec = 8
 
    !> Settings of the contact set-up (one object instead of a long positional list).
    type :: contact_config_t
@@ -86,6 +89,10 @@ module contact2d_contact
       real(wp) :: normal_total = 0          !< sum of F_n [N]
       real(wp) :: tangential_total = 0      !< sum of F_t [N]
       integer(i8) :: clock_ticks = 0        !< time spent in enforce (system_clock ticks)
+      !> per-node constants side by side for the step's loop: rec(rec_*, i) = n_i, t_i, g_i, m_i,
+      !> c/m_i (of the step coefficient c_last), 1 where the tangential dof is free
+      real(wp), allocatable :: rec(:, :)
+      real(wp) :: c_last = -1               !< the c that rec(rec_cmass, :) belongs to
       integer :: stat = 0                   !< /= 0 after a failed LCP solve
       character(len=:), allocatable :: errmsg
    contains
@@ -223,6 +230,14 @@ contains
          end do
       end associate
 
+      allocate (this%rec(nrec, this%nc))
+      this%rec(rec_nx:rec_ny, :) = this%normal
+      this%rec(rec_tx:rec_ty, :) = this%tangent
+      this%rec(rec_gap, :) = this%gap
+      this%rec(rec_mass, :) = this%mass
+      this%rec(rec_cmass, :) = 0
+      this%rec(rec_slides, :) = merge(1.0_wp, 0.0_wp, this%slides)
+
       ! friction threshold s_i: uniform, or piecewise linear in the abscissa (held beyond the ends)
       this%friction = cfg%friction == 'tresca'   ! Tresca's s_i below; the law is made after
       this%friction_in_contact_only = cfg%tresca_scope == 'contact'
@@ -333,6 +348,9 @@ contains
    !> The contact step (SPEC section 4, step 3). u^n, v^(n-1/2) and the trial u~ (unew) in;
    !> unew becomes u^(n+1) = u~ + c M^-1 F_c at the contact nodes and fc(:, node) = F_c.
    !> Energies use the centred increment (u^(n+1) - u^(n-1))/2 (SPEC section 6).
+   !> Two passes over the contact nodes: the normal forces (node by node for P1 and penalty, the
+   !> LCP for P0), then, after the friction law's limits, one pass for the tangential forces, the
+   !> update, energies, diagnostics and status (docs/performance.md, "The contact step").
    subroutine contact_enforce(this, u, v, unew, c, dt, fc)
       class(contact_t), intent(inout) :: this
       real(wp), intent(in) :: u(:, :)      !< u^n [mm]
@@ -342,106 +360,196 @@ contains
       real(wp), intent(in) :: dt           !< [s]
       real(wp), intent(inout) :: fc(:, :)  !< contact force on the body [N]
       integer(i8) :: t0, t1
-      integer :: i, k, st
-      real(wp) :: nx, ny, tx, ty, trial, lim, fx, fy, dx, dy, fnsum, ftsum, wn, wf, rc
+      real(wp) :: rc
       logical :: cells
 
       call system_clock(t0)
       rc = 1/c
       cells = this%multiplier == multiplier_p0 .and. .not. this%penalty
+      ! c/m_i changes only with c (the damping coefficient): kept between steps
+      if (c /= this%c_last) then
+         this%rec(rec_cmass, :) = c/this%mass
+         this%c_last = c
+      end if
       ! normal forces
       if (this%penalty) then
          ! explicit penalty on the gap at t_n: F_n = k_p w_i max(d_i^n, 0)
-         do i = 1, this%nc
-            k = this%node(i)
-            nx = this%normal(1, i)
-            ny = this%normal(2, i)
-            this%fn(i) = this%penalty_stiffness*this%weight(i)*max(u(1, k)*nx + u(2, k)*ny - this%gap(i), 0.0_wp)
-         end do
+         call normal_penalty(this%nc, this%node, this%normal, this%gap, this%weight, this%penalty_stiffness, u, this%fn)
       else if (this%multiplier == multiplier_p1) then
          ! P1: Lambda_n,i = max(0, m_i d~_i / c), node by node
-         do i = 1, this%nc
-            k = this%node(i)
-            nx = this%normal(1, i)
-            ny = this%normal(2, i)
-            this%fn(i) = max(0.0_wp, this%mass(i)*(unew(1, k)*nx + unew(2, k)*ny - this%gap(i))*rc)
-         end do
+         call normal_p1(this%nc, this%node, this%normal, this%gap, this%mass, rc, unew, this%fn)
       else
          ! P0: mu >= 0, (D M^-1 D^T) mu - D d~ / c >= 0, complementary; F_n = D mu
-         do i = 1, this%nc
-            k = this%node(i)
-            nx = this%normal(1, i)
-            ny = this%normal(2, i)
-            this%dtil(i) = (unew(1, k)*nx + unew(2, k)*ny - this%gap(i))*rc
-         end do
+         call trial_gaps(this%nc, this%node, this%normal, this%gap, rc, unew, this%dtil)
          call d_apply(this, this%dtil, this%b)
          if (this%stat == 0) call this%lcp%solve(this%b, this%mu, this%stat, this%errmsg)
          call d_apply(this, this%mu, this%fn)
       end if
-      ! tangential forces: the law's limits from this step's normal forces (one call on plain
-      ! arrays), then trial stick, else slip at the limit (docs/friction.md section 1)
+      ! the law's limits from this step's normal forces (one call on plain arrays); contact
+      ! judged like the status (SPEC section 3): P1 by F_n, P0 on the node's own dual cell
       if (this%friction) then
-         ! contact judged like the status (SPEC section 3): P1 by F_n, P0 on the node's own dual cell
          if (cells) then
             call this%law%limits(this%fn, this%mu, this%slip_limit)
          else
             call this%law%limits(this%fn, this%fn, this%slip_limit)
          end if
-         do i = 1, this%nc
-            k = this%node(i)
-            tx = this%tangent(1, i)
-            ty = this%tangent(2, i)
-            lim = this%slip_limit(i)
-            trial = this%mass(i)*((unew(1, k) - u(1, k))*tx + (unew(2, k) - u(2, k))*ty)*rc
-            this%ft(i) = sign(min(abs(trial), lim), trial)
-            this%stuck(i) = abs(trial) < lim
-         end do
       end if
-      ! apply; work on the centred increment (u^(n+1) - u^(n-1))/2; diagnostics of u^(n+1)
-      fnsum = 0
-      ftsum = 0
-      wn = 0
-      wf = 0
-      do i = 1, this%nc
-         k = this%node(i)
-         nx = this%normal(1, i)
-         ny = this%normal(2, i)
-         tx = this%tangent(1, i)
-         ty = this%tangent(2, i)
-         fx = -this%fn(i)*nx - this%ft(i)*tx
-         fy = -this%fn(i)*ny - this%ft(i)*ty
-         unew(1, k) = unew(1, k) + (c/this%mass(i))*fx
-         unew(2, k) = unew(2, k) + (c/this%mass(i))*fy
-         fc(1, k) = fx
-         fc(2, k) = fy
-         dx = unew(1, k) - u(1, k)
-         dy = unew(2, k) - u(2, k)
-         if (this%stuck(i)) this%stick_increment_max = max(this%stick_increment_max, abs(dx*tx + dy*ty))
-         dx = 0.5_wp*(dx + dt*v(1, k))
-         dy = 0.5_wp*(dy + dt*v(2, k))
-         wn = wn + this%fn(i)*(dx*nx + dy*ny)
-         wf = wf + this%ft(i)*(dx*tx + dy*ty)
-         fnsum = fnsum + this%fn(i)
-         ftsum = ftsum + this%ft(i)
-         this%dtil(i) = unew(1, k)*nx + unew(2, k)*ny - this%gap(i)
-         st = node_status(this, i)
-         if (st /= this%last_status(i)) this%status_changes = this%status_changes + 1
-         this%last_status(i) = st
-      end do
-      this%normal_work = this%normal_work + wn
-      this%friction_dissipation = this%friction_dissipation + wf
-      this%normal_total = fnsum
-      this%tangential_total = ftsum
+      call finish_pass(this, u, v, unew, fc, dt, rc, cells)
       if (cells) then
          call d_apply(this, this%dtil, this%b)
          this%b = this%b/this%weight
          this%penetration_max = max(this%penetration_max, maxval(this%b))
-      else
-         this%penetration_max = max(this%penetration_max, maxval(this%dtil))
       end if
       call system_clock(t1)
       this%clock_ticks = this%clock_ticks + (t1 - t0)
    end subroutine contact_enforce
+
+   !> P1 normal forces Lambda_n,i = max(0, m_i d~_i / c) (the paper's (12)).
+   pure subroutine normal_p1(nc, node, normal, gap, mass, rc, unew, fn)
+      integer, intent(in) :: nc, node(nc)
+      real(wp), intent(in) :: normal(2, nc), gap(nc), mass(nc), rc, unew(2, *)
+      real(wp), intent(out) :: fn(nc)
+      integer :: i, k
+      real(wp) :: nx, ny
+      do i = 1, nc
+         k = node(i)
+         nx = normal(1, i)
+         ny = normal(2, i)
+         fn(i) = max(0.0_wp, mass(i)*(unew(1, k)*nx + unew(2, k)*ny - gap(i))*rc)
+      end do
+   end subroutine normal_p1
+
+   !> Penalty normal forces k_p w_i max(d_i^n, 0) from the gap at t_n.
+   pure subroutine normal_penalty(nc, node, normal, gap, weight, kp, u, fn)
+      integer, intent(in) :: nc, node(nc)
+      real(wp), intent(in) :: normal(2, nc), gap(nc), weight(nc), kp, u(2, *)
+      real(wp), intent(out) :: fn(nc)
+      integer :: i, k
+      real(wp) :: nx, ny
+      do i = 1, nc
+         k = node(i)
+         nx = normal(1, i)
+         ny = normal(2, i)
+         fn(i) = kp*weight(i)*max(u(1, k)*nx + u(2, k)*ny - gap(i), 0.0_wp)
+      end do
+   end subroutine normal_penalty
+
+   !> P0 trial gaps over c, d~_i / c.
+   pure subroutine trial_gaps(nc, node, normal, gap, rc, unew, dtil)
+      integer, intent(in) :: nc, node(nc)
+      real(wp), intent(in) :: normal(2, nc), gap(nc), rc, unew(2, *)
+      real(wp), intent(out) :: dtil(nc)
+      integer :: i, k
+      real(wp) :: nx, ny
+      do i = 1, nc
+         k = node(i)
+         nx = normal(1, i)
+         ny = normal(2, i)
+         dtil(i) = (unew(1, k)*nx + unew(2, k)*ny - gap(i))*rc
+      end do
+   end subroutine trial_gaps
+
+   !> After the normal forces and the law's limits, one pass over the contact nodes: tangential
+   !> forces (trial stick, else slip at the limit: docs/friction.md section 1), u^(n+1) and F_c,
+   !> work on the centred increment (u^(n+1) - u^(n-1))/2, the diagnostics of u^(n+1) and the
+   !> status (the rule of node_status, evaluated here on the values at hand).
+   subroutine finish_pass(this, u, v, unew, fc, dt, rc, cells)
+      type(contact_t), intent(inout) :: this
+      real(wp), intent(in) :: u(2, *), v(2, *)
+      real(wp), intent(inout) :: unew(2, *), fc(2, *)
+      real(wp), intent(in) :: dt, rc
+      logical, intent(in) :: cells
+      call finish_nodes(this%nc, this%node, this%rec, this%fn, this%slip_limit, this%mu, this%ft, this%stuck, &
+                        this%dtil, this%last_status, this%friction, this%friction_coefficient > 0, cells, &
+                        u, v, unew, fc, dt, rc, this%stick_increment_max, this%penetration_max, this%status_changes, &
+                        this%normal_work, this%friction_dissipation, this%normal_total, this%tangential_total)
+   end subroutine finish_pass
+
+   !> The loop of finish_pass on plain arrays. rec(:, i): the per-node constants (rec_* indices).
+   subroutine finish_nodes(nc, node, rec, fnv, limv, mu, ftv, stuckv, dtil, last_status, friction, coulomb, cells, &
+                           u, v, unew, fc, dt, rc, sim, pen, changes, normal_work, friction_dissipation, &
+                           normal_total, tangential_total)
+      integer, intent(in) :: nc, node(nc)
+      real(wp), intent(in) :: rec(nrec, nc), fnv(nc), limv(nc), mu(nc)
+      real(wp), intent(inout) :: ftv(nc)
+      logical, intent(inout) :: stuckv(nc)
+      real(wp), intent(inout) :: dtil(nc)
+      integer, intent(inout) :: last_status(nc)
+      logical, intent(in) :: friction, coulomb, cells
+      real(wp), intent(in) :: u(2, *), v(2, *)
+      real(wp), intent(inout) :: unew(2, *), fc(2, *)
+      real(wp), intent(in) :: dt, rc
+      real(wp), intent(inout) :: sim, pen, normal_work, friction_dissipation
+      integer(i8), intent(inout) :: changes
+      real(wp), intent(out) :: normal_total, tangential_total
+      integer :: i, k, st
+      real(wp) :: nx, ny, tx, ty, trial, lim, fn, ft, fx, fy, dx, dy, cm, d, fnsum, ftsum, wn, wf
+      logical :: stuck, touching
+
+      fnsum = 0
+      ftsum = 0
+      wn = 0
+      wf = 0
+      do i = 1, nc
+         k = node(i)
+         nx = rec(rec_nx, i)
+         ny = rec(rec_ny, i)
+         tx = rec(rec_tx, i)
+         ty = rec(rec_ty, i)
+         fn = fnv(i)
+         lim = limv(i)
+         if (friction) then
+            trial = rec(rec_mass, i)*((unew(1, k) - u(1, k))*tx + (unew(2, k) - u(2, k))*ty)*rc
+            ft = sign(min(abs(trial), lim), trial)
+            stuck = abs(trial) < lim
+            ftv(i) = ft
+            stuckv(i) = stuck
+         else
+            ft = ftv(i)
+            stuck = stuckv(i)
+         end if
+         fx = -fn*nx - ft*tx
+         fy = -fn*ny - ft*ty
+         cm = rec(rec_cmass, i)
+         unew(1, k) = unew(1, k) + cm*fx
+         unew(2, k) = unew(2, k) + cm*fy
+         fc(1, k) = fx
+         fc(2, k) = fy
+         dx = unew(1, k) - u(1, k)
+         dy = unew(2, k) - u(2, k)
+         if (stuck) sim = max(sim, abs(dx*tx + dy*ty))
+         dx = 0.5_wp*(dx + dt*v(1, k))
+         dy = 0.5_wp*(dy + dt*v(2, k))
+         wn = wn + fn*(dx*nx + dy*ny)
+         wf = wf + ft*(dx*tx + dy*ty)
+         fnsum = fnsum + fn
+         ftsum = ftsum + ft
+         d = unew(1, k)*nx + unew(2, k)*ny - rec(rec_gap, i)
+         ! status (node_status): with P0 the normal part is judged on the node's dual cell
+         if (cells) then
+            dtil(i) = d
+            touching = mu(i) > 0 .or. (coulomb .and. fn > 0)
+         else
+            pen = max(pen, d)
+            touching = fn > 0
+         end if
+         if (.not. touching) then
+            st = status_separated
+         else if (.not. friction .or. (lim <= 0 .and. rec(rec_slides, i) > 0)) then
+            st = status_slip
+         else if (lim > 0 .and. abs(ft) >= (1 - slip_tol)*lim) then
+            st = status_slip
+         else
+            st = status_stick
+         end if
+         if (st /= last_status(i)) changes = changes + 1
+         last_status(i) = st
+      end do
+      normal_work = normal_work + wn
+      friction_dissipation = friction_dissipation + wf
+      normal_total = fnsum
+      tangential_total = ftsum
+   end subroutine finish_nodes
 
    !> Status per contact node (SPEC section 3): 0 separated, 1 stick, 2 slip.
    subroutine contact_status(this, status)
