@@ -27,7 +27,7 @@ module contact2d_contact
    real(wp), parameter :: slip_tol = 1.0e-8_wp
    !> rows of contact_t%rec
    integer, parameter :: rec_nx = 1, rec_ny = 2, rec_tx = 3, rec_ty = 4, rec_gap = 5, rec_mass = 6, &
-                         rec_cmass = 7, rec_slides = 8, nrec = 8
+                         rec_cmass = 7, rec_free0 = 8, nrec = 8
 
    !> Settings of the contact set-up (one object instead of a long positional list).
    type :: contact_config_t
@@ -54,6 +54,9 @@ module contact2d_contact
       real(wp) :: penalty_stiffness = 0     !< k_p [MPa/mm]
       logical :: friction = .false.         !< Tresca or Coulomb friction (law allocated)
       class(friction_law_t), allocatable :: law   !< the friction law (docs/friction.md section 2)
+      !> the tangential limits never change (no friction, or law%fixed_limits()): slip_limit is
+      !> set once and P1 finds F_n in the same pass as the rest of the step
+      logical :: limits_fixed = .false.
       real(wp) :: friction_coefficient = 0  !< Coulomb mu [-] (0 unless friction = 'coulomb')
       logical :: friction_in_contact_only = .false.   !< tresca_scope = 'contact'
       real(wp), allocatable :: normal(:, :)   !< n_i, outward normal of the body (2, nc)
@@ -90,7 +93,7 @@ module contact2d_contact
       real(wp) :: tangential_total = 0      !< sum of F_t [N]
       integer(i8) :: clock_ticks = 0        !< time spent in enforce (system_clock ticks)
       !> per-node constants side by side for the step's loop: rec(rec_*, i) = n_i, t_i, g_i, m_i,
-      !> c/m_i (of the step coefficient c_last), 1 where the tangential dof is free
+      !> c/m_i (of the step coefficient c_last), 1 where a zero tangential limit means slip
       real(wp), allocatable :: rec(:, :)
       real(wp) :: c_last = -1               !< the c that rec(rec_cmass, :) belongs to
       integer :: stat = 0                   !< /= 0 after a failed LCP solve
@@ -236,7 +239,6 @@ contains
       this%rec(rec_gap, :) = this%gap
       this%rec(rec_mass, :) = this%mass
       this%rec(rec_cmass, :) = 0
-      this%rec(rec_slides, :) = merge(1.0_wp, 0.0_wp, this%slides)
 
       ! friction threshold s_i: uniform, or piecewise linear in the abscissa (held beyond the ends)
       this%friction = cfg%friction == 'tresca'   ! Tresca's s_i below; the law is made after
@@ -265,6 +267,10 @@ contains
       allocate (this%slip_limit(this%nc))
       if (this%friction) call this%law%limits(this%fn, this%fn, this%slip_limit)
       if (.not. this%friction) this%slip_limit = 0
+      this%limits_fixed = .not. this%friction
+      if (this%friction) this%limits_fixed = this%law%fixed_limits()
+      ! a zero limit means slip where there is no friction or the tangential dof is free
+      this%rec(rec_free0, :) = merge(1.0_wp, 0.0_wp, this%slides .or. .not. this%friction)
 
       this%penalty = cfg%method == 'penalty'
       this%penalty_stiffness = cfg%penalty_stiffness
@@ -376,8 +382,10 @@ contains
          ! explicit penalty on the gap at t_n: F_n = k_p w_i max(d_i^n, 0)
          call normal_penalty(this%nc, this%node, this%normal, this%gap, this%weight, this%penalty_stiffness, u, this%fn)
       else if (this%multiplier == multiplier_p1) then
-         ! P1: Lambda_n,i = max(0, m_i d~_i / c), node by node
-         call normal_p1(this%nc, this%node, this%normal, this%gap, this%mass, rc, unew, this%fn)
+         ! P1: Lambda_n,i = max(0, m_i d~_i / c), node by node (in finish_pass when the limits
+         ! are fixed)
+         if (.not. this%limits_fixed) &
+            call normal_p1(this%nc, this%node, this%normal, this%gap, this%mass, rc, unew, this%fn)
       else
          ! P0: mu >= 0, (D M^-1 D^T) mu - D d~ / c >= 0, complementary; F_n = D mu
          call trial_gaps(this%nc, this%node, this%normal, this%gap, rc, unew, this%dtil)
@@ -387,7 +395,7 @@ contains
       end if
       ! the law's limits from this step's normal forces (one call on plain arrays); contact
       ! judged like the status (SPEC section 3): P1 by F_n, P0 on the node's own dual cell
-      if (this%friction) then
+      if (this%friction .and. .not. this%limits_fixed) then
          if (cells) then
             call this%law%limits(this%fn, this%mu, this%slip_limit)
          else
@@ -461,21 +469,24 @@ contains
       logical, intent(in) :: cells
       call finish_nodes(this%nc, this%node, this%rec, this%fn, this%slip_limit, this%mu, this%ft, this%stuck, &
                         this%dtil, this%last_status, this%friction, this%friction_coefficient > 0, cells, &
+                        this%limits_fixed .and. this%multiplier == multiplier_p1 .and. .not. this%penalty, &
                         u, v, unew, fc, dt, rc, this%stick_increment_max, this%penetration_max, this%status_changes, &
                         this%normal_work, this%friction_dissipation, this%normal_total, this%tangential_total)
    end subroutine finish_pass
 
    !> The loop of finish_pass on plain arrays. rec(:, i): the per-node constants (rec_* indices).
    subroutine finish_nodes(nc, node, rec, fnv, limv, mu, ftv, stuckv, dtil, last_status, friction, coulomb, cells, &
-                           u, v, unew, fc, dt, rc, sim, pen, changes, normal_work, friction_dissipation, &
+                           p1_here, u, v, unew, fc, dt, rc, sim, pen, changes, normal_work, friction_dissipation, &
                            normal_total, tangential_total)
       integer, intent(in) :: nc, node(nc)
-      real(wp), intent(in) :: rec(nrec, nc), fnv(nc), limv(nc), mu(nc)
+      real(wp), intent(in) :: rec(nrec, nc), limv(nc), mu(nc)
+      real(wp), intent(inout) :: fnv(nc)
       real(wp), intent(inout) :: ftv(nc)
       logical, intent(inout) :: stuckv(nc)
       real(wp), intent(inout) :: dtil(nc)
       integer, intent(inout) :: last_status(nc)
       logical, intent(in) :: friction, coulomb, cells
+      logical, intent(in) :: p1_here   !< find the P1 normal force here (normal_p1's expression)
       real(wp), intent(in) :: u(2, *), v(2, *)
       real(wp), intent(inout) :: unew(2, *), fc(2, *)
       real(wp), intent(in) :: dt, rc
@@ -484,7 +495,7 @@ contains
       real(wp), intent(out) :: normal_total, tangential_total
       integer :: i, k, st
       real(wp) :: nx, ny, tx, ty, trial, lim, fn, ft, fx, fy, dx, dy, cm, d, fnsum, ftsum, wn, wf
-      logical :: stuck, touching
+      logical :: stuck, touching, slip
 
       fnsum = 0
       ftsum = 0
@@ -496,7 +507,12 @@ contains
          ny = rec(rec_ny, i)
          tx = rec(rec_tx, i)
          ty = rec(rec_ty, i)
-         fn = fnv(i)
+         if (p1_here) then
+            fn = max(0.0_wp, rec(rec_mass, i)*(unew(1, k)*nx + unew(2, k)*ny - rec(rec_gap, i))*rc)
+            fnv(i) = fn
+         else
+            fn = fnv(i)
+         end if
          lim = limv(i)
          if (friction) then
             trial = rec(rec_mass, i)*((unew(1, k) - u(1, k))*tx + (unew(2, k) - u(2, k))*ty)*rc
@@ -525,7 +541,8 @@ contains
          fnsum = fnsum + fn
          ftsum = ftsum + ft
          d = unew(1, k)*nx + unew(2, k)*ny - rec(rec_gap, i)
-         ! status (node_status): with P0 the normal part is judged on the node's dual cell
+         ! status (node_status, same outcome): with P0 the normal part is judged on the node's
+         ! dual cell; a zero limit is slip where rec_free0 says the node slides freely
          if (cells) then
             dtil(i) = d
             touching = mu(i) > 0 .or. (coulomb .and. fn > 0)
@@ -533,16 +550,9 @@ contains
             pen = max(pen, d)
             touching = fn > 0
          end if
-         if (.not. touching) then
-            st = status_separated
-         else if (.not. friction .or. (lim <= 0 .and. rec(rec_slides, i) > 0)) then
-            st = status_slip
-         else if (lim > 0 .and. abs(ft) >= (1 - slip_tol)*lim) then
-            st = status_slip
-         else
-            st = status_stick
-         end if
-         if (st /= last_status(i)) changes = changes + 1
+         slip = merge(rec(rec_free0, i) > 0, abs(ft) >= (1 - slip_tol)*lim, lim <= 0)
+         st = merge(merge(status_slip, status_stick, slip), status_separated, touching)
+         changes = changes + merge(1, 0, st /= last_status(i))
          last_status(i) = st
       end do
       normal_work = normal_work + wn

@@ -20,6 +20,10 @@ module contact2d_friction
       procedure(friction_law_limits), deferred :: limits
       !> The deck's name of the law ('tresca', 'coulomb').
       procedure :: name => friction_law_name
+      !> .true. when limits() does not depend on its fn and closed arguments (the same limits
+      !> every step): the contact step then takes them once and finds F_n and F_t in one pass.
+      !> A law that does not say so is asked every step.
+      procedure :: fixed_limits => friction_law_fixed_limits
    end type friction_law_t
 
    abstract interface
@@ -39,4 +43,9 @@ contains
       character(len=:), allocatable :: name
       name = trim(this%label)
    end function friction_law_name
+
+   pure logical function friction_law_fixed_limits(this) result(fixed)
+      class(friction_law_t), intent(in) :: this
+      fixed = .false.
+   end function friction_law_fixed_limits
 end module contact2d_friction

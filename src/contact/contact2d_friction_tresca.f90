@@ -15,6 +15,7 @@ module contact2d_friction_tresca
    contains
       procedure :: init => tresca_law_init
       procedure :: limits => tresca_law_limits
+      procedure :: fixed_limits => tresca_law_fixed_limits
    end type tresca_law_t
 
 contains
@@ -46,4 +47,10 @@ contains
          limit = this%bound
       end if
    end subroutine tresca_law_limits
+
+   !> With tresca_scope = 'all' the limits s_i w_i never change.
+   pure logical function tresca_law_fixed_limits(this) result(fixed)
+      class(tresca_law_t), intent(in) :: this
+      fixed = .not. this%in_contact_only
+   end function tresca_law_fixed_limits
 end module contact2d_friction_tresca
