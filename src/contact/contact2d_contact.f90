@@ -54,7 +54,7 @@ module contact2d_contact
       real(wp) :: penalty_stiffness = 0     !< k_p [MPa/mm]
       logical :: friction = .false.         !< Tresca or Coulomb friction (law allocated)
       class(friction_law_t), allocatable :: law   !< the friction law (docs/friction.md section 2)
-      !> the tangential limits never change (no friction, or law%fixed_limits()): slip_limit is
+      !> the tangential limits never change (no friction, or law%fixed): slip_limit is
       !> set once and P1 finds F_n in the same pass as the rest of the step
       logical :: limits_fixed = .false.
       real(wp) :: friction_coefficient = 0  !< Coulomb mu [-] (0 unless friction = 'coulomb')
@@ -268,7 +268,7 @@ contains
       if (this%friction) call this%law%limits(this%fn, this%fn, this%slip_limit)
       if (.not. this%friction) this%slip_limit = 0
       this%limits_fixed = .not. this%friction
-      if (this%friction) this%limits_fixed = this%law%fixed_limits()
+      if (this%friction) this%limits_fixed = this%law%fixed
       ! a zero limit means slip where there is no friction or the tangential dof is free
       this%rec(rec_free0, :) = merge(1.0_wp, 0.0_wp, this%slides .or. .not. this%friction)
 

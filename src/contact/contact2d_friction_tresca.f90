@@ -15,7 +15,6 @@ module contact2d_friction_tresca
    contains
       procedure :: init => tresca_law_init
       procedure :: limits => tresca_law_limits
-      procedure :: fixed_limits => tresca_law_fixed_limits
    end type tresca_law_t
 
 contains
@@ -28,6 +27,7 @@ contains
       this%label = 'tresca'
       this%bound = bound
       this%in_contact_only = in_contact_only
+      this%fixed = .not. in_contact_only   ! with tresca_scope = 'all' s_i w_i never change
    end subroutine tresca_law_init
 
    !> limit_i = s_i w_i, or 0 where node i is not in contact with tresca_scope = 'contact'
@@ -47,10 +47,4 @@ contains
          limit = this%bound
       end if
    end subroutine tresca_law_limits
-
-   !> With tresca_scope = 'all' the limits s_i w_i never change.
-   pure logical function tresca_law_fixed_limits(this) result(fixed)
-      class(tresca_law_t), intent(in) :: this
-      fixed = .not. this%in_contact_only
-   end function tresca_law_fixed_limits
 end module contact2d_friction_tresca

@@ -93,37 +93,41 @@ contains
       integer, intent(in) :: n, kd
       real(wp), intent(in) :: arow(-kd:kd, n), x(n)
       real(wp), intent(out) :: y(n)
-      integer :: i, j
+      integer :: i
       real(wp) :: s
       if (kd == 2 .and. n > 4) then
          ! the P0 LCP's five bands: the interior rows written out (same terms, same order)
-         do i = 1, n
-            if (i > 2 .and. i < n - 1) then
-               s = 0
-               s = s + arow(-2, i)*x(i - 2)
-               s = s + arow(-1, i)*x(i - 1)
-               s = s + arow(0, i)*x(i)
-               s = s + arow(1, i)*x(i + 1)
-               s = s + arow(2, i)*x(i + 2)
-               y(i) = s
-            else
-               s = 0
-               do j = max(1, i - kd), min(n, i + kd)
-                  s = s + arow(j - i, i)*x(j)
-               end do
-               y(i) = s
-            end if
+         call band_rows(n, kd, arow, x, y, 1, 2)
+         do i = 3, n - 2
+            s = 0
+            s = s + arow(-2, i)*x(i - 2)
+            s = s + arow(-1, i)*x(i - 1)
+            s = s + arow(0, i)*x(i)
+            s = s + arow(1, i)*x(i + 1)
+            s = s + arow(2, i)*x(i + 2)
+            y(i) = s
          end do
-         return
+         call band_rows(n, kd, arow, x, y, n - 1, n)
+      else
+         call band_rows(n, kd, arow, x, y, 1, n)
       end if
-      do i = 1, n
+   end subroutine band_matvec
+
+   !> Rows i1..i2 of y = A x, the terms in the order of j.
+   pure subroutine band_rows(n, kd, arow, x, y, i1, i2)
+      integer, intent(in) :: n, kd, i1, i2
+      real(wp), intent(in) :: arow(-kd:kd, n), x(n)
+      real(wp), intent(inout) :: y(n)
+      integer :: i, j
+      real(wp) :: s
+      do i = i1, i2
          s = 0
          do j = max(1, i - kd), min(n, i + kd)
             s = s + arow(j - i, i)*x(j)
          end do
          y(i) = s
       end do
-   end subroutine band_matvec
+   end subroutine band_rows
 
    !> Solve the LCP for b. stat /= 0 (with a message) if LAPACK fails or no method converges.
    subroutine lcp_solve(this, b, mu, stat, errmsg)
