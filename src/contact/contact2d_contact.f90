@@ -345,10 +345,15 @@ contains
       integer :: i, nc
       nc = this%nc
       y = this%dd*x
-      do i = 1, nc - 1
+      ! row by row, each row's terms in the order of the edge loop it replaces (y(i) gets the
+      ! edge (i-1, i) before the edge (i, i+1)), so the sums are the same
+      if (nc < 2) return
+      y(1) = y(1) + this%dl(1)*x(2)
+      do i = 2, nc - 1
+         y(i) = y(i) + this%dl(i - 1)*x(i - 1)
          y(i) = y(i) + this%dl(i)*x(i + 1)
-         y(i + 1) = y(i + 1) + this%dl(i)*x(i)
       end do
+      y(nc) = y(nc) + this%dl(nc - 1)*x(nc - 1)
    end subroutine d_apply
 
    !> The contact step (SPEC section 4, step 3). u^n, v^(n-1/2) and the trial u~ (unew) in;
