@@ -481,7 +481,8 @@ contains
 
    !> The loop of finish_pass on plain arrays. rec(:, i): the per-node constants (rec_* indices).
    subroutine finish_nodes(nc, node, rec, fnv, limv, mu, ftv, stuckv, dtil, last_status, friction, coulomb, cells, &
-                           p1_here, u, v, unew, fc, dt, rc, sim, pen, changes, normal_work, friction_dissipation, &
+                           p1_here, u, v, unew, fc, dt, rc, sim_max, pen_max, status_changes, normal_work, &
+                           friction_dissipation, &
                            normal_total, tangential_total)
       integer, intent(in) :: nc, node(nc)
       real(wp), intent(in) :: rec(nrec, nc), limv(nc), mu(nc)
@@ -495,13 +496,17 @@ contains
       real(wp), intent(in) :: u(2, *), v(2, *)
       real(wp), intent(inout) :: unew(2, *), fc(2, *)
       real(wp), intent(in) :: dt, rc
-      real(wp), intent(inout) :: sim, pen, normal_work, friction_dissipation
-      integer(i8), intent(inout) :: changes
+      real(wp), intent(inout) :: sim_max, pen_max, normal_work, friction_dissipation
+      integer(i8), intent(inout) :: status_changes
       real(wp), intent(out) :: normal_total, tangential_total
       integer :: i, k, st
-      real(wp) :: nx, ny, tx, ty, trial, lim, fn, ft, fx, fy, dx, dy, cm, d, fnsum, ftsum, wn, wf
+      real(wp) :: nx, ny, tx, ty, trial, lim, fn, ft, fx, fy, dx, dy, cm, d, fnsum, ftsum, wn, wf, sim, pen
+      integer(i8) :: changes
       logical :: stuck, touching, slip
 
+      sim = sim_max
+      pen = pen_max
+      changes = 0
       fnsum = 0
       ftsum = 0
       wn = 0
@@ -521,8 +526,9 @@ contains
          lim = limv(i)
          if (friction) then
             trial = rec(rec_mass, i)*((unew(1, k) - u(1, k))*tx + (unew(2, k) - u(2, k))*ty)*rc
-            ft = sign(min(abs(trial), lim), trial)
+            ! sign(min(|trial|, lim), trial), written so that no spilled value is reloaded wider
             stuck = abs(trial) < lim
+            ft = merge(trial, sign(lim, trial), stuck)
             ftv(i) = ft
             stuckv(i) = stuck
          else
@@ -564,6 +570,9 @@ contains
       friction_dissipation = friction_dissipation + wf
       normal_total = fnsum
       tangential_total = ftsum
+      sim_max = sim
+      pen_max = pen
+      status_changes = status_changes + changes
    end subroutine finish_nodes
 
    !> Status per contact node (SPEC section 3): 0 separated, 1 stick, 2 slip.
