@@ -14,7 +14,6 @@ module contact2d_driver
    use contact2d_sys, only: sys_signals_install, sys_signal_pending, sys_strerror, sys_exit_now
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use contact2d_threads, only: thread_tuner_t
-   use contact2d_omp_env, only: omp_env_wait
    use contact2d_stiffness, only: omp_min_nodes
    use contact2d_static_run, only: static_run, static_distance, summary_contact_status
    use contact2d_initial, only: initial_velocity_apply, initial_velocity_warning
@@ -52,7 +51,6 @@ contains
       logical :: static_converged, static_written
       character(len=:), allocatable :: static_msg
 
-      call omp_env_wait()   ! may re-execute the program with a short OpenMP spin (GOMP_SPINCOUNT)
       call system_clock(clock0, rate)
       static_dist = huge(1.0_wp)
       call cli_parse(cli, stat, errmsg)
