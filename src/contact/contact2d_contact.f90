@@ -502,7 +502,7 @@ contains
       integer :: i, k, st
       real(wp) :: nx, ny, tx, ty, trial, lim, fn, ft, fx, fy, dx, dy, cm, d, fnsum, ftsum, wn, wf, sim, pen
       integer(i8) :: changes
-      logical :: stuck, touching, slip
+      logical :: stuck, touching
 
       sim = sim_max
       pen = pen_max
@@ -561,8 +561,7 @@ contains
             pen = max(pen, d)
             touching = fn > 0
          end if
-         slip = merge(rec(rec_free0, i) > 0, abs(ft) >= (1 - slip_tol)*lim, lim <= 0)
-         st = merge(merge(status_slip, status_stick, slip), status_separated, touching)
+         st = status_rule(touching, lim, ft, rec(rec_free0, i) > 0)
          changes = changes + merge(1, 0, st /= last_status(i))
          last_status(i) = st
       end do
@@ -598,18 +597,21 @@ contains
       else
          touching = this%fn(i) > 0
       end if
-      if (.not. touching) then
-         status = status_separated
-      else if (.not. this%friction .or. (this%slip_limit(i) <= 0 .and. this%slides(i))) then
-         ! no friction, or a zero limit this step (Tresca s_i = 0, Coulomb mu = 0): the node
-         ! slides freely (docs/output.md)
-         status = status_slip
-      else if (this%slip_limit(i) > 0 .and. abs(this%ft(i)) >= (1 - slip_tol)*this%slip_limit(i)) then
-         status = status_slip
-      else
-         status = status_stick
-      end if
+      status = status_rule(touching, this%slip_limit(i), this%ft(i), this%rec(rec_free0, i) > 0)
    end function node_status
+
+   !> The status of a node from its contact state, this step's tangential limit lim and force ft:
+   !> separated if not touching; else slip if |ft| >= (1 - slip_tol) lim > 0, or if lim = 0 where
+   !> a zero limit means sliding freely (free0: no friction law, or the tangential dof is free, as
+   !> with Tresca s_i = 0 or Coulomb mu = 0; docs/output.md); else stick. Without branches (the
+   !> step's pass uses it too).
+   pure elemental integer function status_rule(touching, lim, ft, free0) result(status)
+      logical, intent(in) :: touching, free0
+      real(wp), intent(in) :: lim, ft
+      logical :: slip
+      slip = merge(free0, abs(ft) >= (1 - slip_tol)*lim, lim <= 0)
+      status = merge(merge(status_slip, status_stick, slip), status_separated, touching)
+   end function status_rule
 
    !> Multiplier fields (SPEC section 3): P1 (and penalty) per node, lambda = M_c^-1 F (consistent
    !> 1D mass of Gamma_c, LAPACK dptsv); P0 per dual cell, mu_n and mu_t = D^-1 F_t.
