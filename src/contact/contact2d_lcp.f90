@@ -61,8 +61,9 @@ contains
       this%fact_set = .false.
       this%set_moved = .true.
       allocate (this%arow(-kd:kd, this%n))
+      this%arow = 0
       do i = 1, this%n
-         do o = -kd, kd
+         do o = max(-kd, 1 - i), min(kd, this%n - i)
             this%arow(o, i) = this%entry(i, i + o)
          end do
       end do
