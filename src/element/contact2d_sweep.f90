@@ -51,7 +51,8 @@ module contact2d_sweep
       !> rows then use its nine distinct values, qs, on sums and differences of rows
       logical :: sym = .false.
       real(wp) :: qs(0:7, 5) = 0
-      !> per thread, the sum and difference rows of grid_row_sym, (0:2 (nx + 1) - 1, 2, 0:nscr - 1)
+      !> per thread, the sum and difference rows of grid_row_sym for two consecutive rows (this
+      !> row's and the next one's, formed in this row's loop), (0:2 (nx + 1) - 1, 4, 0:nscr - 1)
       real(wp), allocatable :: scr(:, :, :)
       integer :: nscr = 0
       !> per-dof masses and inverses of each class of grid row, (2 (nx + 1), nclass) [t], [1/t]
@@ -95,7 +96,7 @@ contains
       call symmetric_coefficients(this%s(:, :, :, :, 2, 2), this%sym, this%qs)
       ! (allocated even when unused: it is passed to sweep_grid)
       this%nscr = max(omp_get_max_threads(), omp_get_num_procs())
-      allocate (this%scr(0:n - 1, 2, 0:this%nscr - 1))
+      allocate (this%scr(0:n - 1, 4, 0:this%nscr - 1))
       this%scr = 0
       ! per-dof masses of every row; the class of row j is its row type (1 bottom, 2 inside, 3 top)
       mrow = reshape(spread(stiff%mass, 1, 2), [n, ny + 1])
@@ -197,7 +198,8 @@ contains
                          scr, nscr, full)
       integer, intent(in) :: nx, ny
       real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
-      real(wp), intent(in) :: rmass(:, :), rcbm(:, :)
+      ! (contiguous: the rows passed on need no contiguity test or packing per row)
+      real(wp), intent(in), contiguous :: rmass(:, :), rcbm(:, :)
       integer, intent(in) :: rclass(0:ny)
       real(wp), intent(in) :: u(2, 0:nx, 0:ny)
       real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
@@ -207,19 +209,29 @@ contains
       real(wp), intent(in) :: qs(0:7, 5)
       integer, intent(in) :: nscr
       real(wp), intent(inout) :: scr(0:, :, 0:)
-      integer :: j, rt, t
+      integer :: j, rt, t, jmade, k, kn
       ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it).
       ! Static rows: each thread keeps the same block of rows every step, so they stay in its own
       ! cache (dynamic sharing moved rows between cores: 1.7x slower on two threads, measured
       ! in docs/performance.md "Threads that never hurt")
-      !$omp parallel do schedule(static) if(par) private(rt, t) num_threads(max(1, min(omp_get_max_threads(), nscr)))
+      ! Each inside row forms the sum and difference rows of the next one in its own loop (scratch
+      ! slots 3 - k, 4 - k); jmade is the row they were formed for (one thread's rows are
+      ! consecutive: only its first inside row forms its own)
+      jmade = -1
+      !$omp parallel do schedule(static) if(par) private(rt, t, k, kn) firstprivate(jmade) &
+      !$omp num_threads(max(1, min(omp_get_max_threads(), nscr)))
       do j = 0, ny
          rt = row_type(j, ny)
          if (sym .and. rt == 2) then
             t = omp_get_thread_num()
-            call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), f(1, 0, j), qs, &
-                              e(1, 1, -1, 1, rt), scr(:, 1, t), scr(:, 2, t), v(1, 0, j), rmass(:, rclass(j)), &
+            k = 2*mod(j, 2) + 1
+            kn = 4 - k
+            ! (the last inside row forms nothing that is used: row j + 1 stands for j + 2)
+            call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), u(1, 0, min(j + 2, ny)), &
+                              f(1, 0, j), qs, e(1, 1, -1, 1, rt), scr(:, k, t), scr(:, k + 1, t), &
+                              scr(:, kn, t), scr(:, kn + 1, t), jmade == j, v(1, 0, j), rmass(:, rclass(j)), &
                               rcbm(:, rclass(j)), ca, dt, w(1, 0, j), partial(1, j), full)
+            jmade = j + 1
          else
             call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
                           cv(0, -3, 1, rt), cs(0, -3, 1, rt), e(1, 1, -1, 1, rt))
@@ -348,16 +360,21 @@ contains
    !> last term is C (E(p + 2) - E(p - 2)) on either parity: 6 multiply-adds and 8 loads per
    !> output instead of 21 and 21. Blocks of four outputs (one 256-bit vector; four lanes of
    !> partial sums), so that coefficients and sums stay in registers. cbm = cb M^-1 of the row.
-   subroutine grid_row_sym(n, um, u0, up, f, q, e, sb, eb, v, m, cbm, ca, dt, w, part, full)
+   subroutine grid_row_sym(n, um, u0, up, u2, f, q, e, sb, eb, sn, en, have, v, m, cbm, ca, dt, w, part, full)
       integer, intent(in) :: n
       real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 5)
+      real(wp), intent(in) :: u2(0:n - 1)        !< row j + 2 (for the next row's sb, eb)
       real(wp), intent(in) :: e(2, 4, -1:1, 2)   !< end-node stencils of this row type
       real(wp), intent(inout) :: f(0:n - 1), sb(0:n - 1), eb(0:n - 1)
+      !> sb and eb of the next row (u2 + u0, u2 - u0 swapped), formed here
+      real(wp), intent(inout) :: sn(0:n - 1), en(0:n - 1)
+      logical, intent(in) :: have   !< sb and eb already hold this row's (formed by the row before)
       real(wp), intent(in) :: m(0:n - 1), cbm(0:n - 1), ca, dt
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
       logical, intent(in) :: full   !< store f and form the u~ . f sum at the interior outputs
-      integer :: b, l, p, nb
+      integer :: b, l, p, nb, k, i
+      integer, parameter :: nu = 2   !< blocks per loop step (steps without K u)
       real(wp) :: fp, vo, vs, wn, ek, es, ea, ek4(0:3), es4(0:3), ea4(0:3)
       ! (array elements for the explicit-shape dummies: no temporaries)
       call end_node(e(1, 1, -1, 1), um(0), u0(0), up(0), f(0))
@@ -366,13 +383,15 @@ contains
       es = 0
       ea = 0
       if (n >= 6) then   ! else one column of elements: no interior node
-         !$omp simd
-         do p = 0, n - 2, 2
-            sb(p) = um(p) + up(p)
-            sb(p + 1) = um(p + 1) + up(p + 1)
-            eb(p) = up(p + 1) - um(p + 1)
-            eb(p + 1) = up(p) - um(p)
-         end do
+         if (.not. have) then
+            !$omp simd
+            do p = 0, n - 2, 2
+               sb(p) = um(p) + up(p)
+               sb(p + 1) = um(p + 1) + up(p + 1)
+               eb(p) = up(p + 1) - um(p + 1)
+               eb(p + 1) = up(p) - um(p)
+            end do
+         end if
          ek4 = 0
          es4 = 0
          ea4 = 0
@@ -396,10 +415,43 @@ contains
                   v(p) = vs
                   w(p) = wn
                end do
+               !$omp simd private(p)
+               do k = 0, 2, 2
+                  p = 2 + 4*b + k
+                  sn(p) = u0(p) + u2(p)
+                  sn(p + 1) = u0(p + 1) + u2(p + 1)
+                  en(p) = u2(p + 1) - u0(p + 1)
+                  en(p + 1) = u2(p) - u0(p)
+               end do
             end do
          else
-            ! the same without f and the u~ . f sum
-            do b = 0, nb - 1
+            ! the same without f and the u~ . f sum; blocks by groups of nu (one loop step for nu)
+            do b = 0, nb - nu, nu
+               !$omp simd private(p, fp, vo, vs)
+               do l = 0, 3
+                  do i = 0, nu - 1
+                     p = 2 + 4*(b + i) + l
+                     fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
+                           + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
+                          + q(l, 5)*(eb(p + 2) - eb(p - 2))
+                     vo = v(p)
+                     vs = ca*vo - cbm(p)*fp
+                     ek4(l) = ek4(l) + m(p)*vs*vs
+                     ea4(l) = ea4(l) + m(p)*(vs - vo)**2
+                     v(p) = vs
+                     w(p) = u0(p) + dt*vs
+                  end do
+               end do
+               !$omp simd private(p)
+               do k = 0, 4*nu - 2, 2
+                  p = 2 + 4*b + k
+                  sn(p) = u0(p) + u2(p)
+                  sn(p + 1) = u0(p + 1) + u2(p + 1)
+                  en(p) = u2(p + 1) - u0(p + 1)
+                  en(p + 1) = u2(p) - u0(p)
+               end do
+            end do
+            do b = nu*(nb/nu), nb - 1
                !$omp simd private(p, fp, vo, vs)
                do l = 0, 3
                   p = 2 + 4*b + l
@@ -413,8 +465,24 @@ contains
                   v(p) = vs
                   w(p) = u0(p) + dt*vs
                end do
+               !$omp simd private(p)
+               do k = 0, 2, 2
+                  p = 2 + 4*b + k
+                  sn(p) = u0(p) + u2(p)
+                  sn(p + 1) = u0(p + 1) + u2(p + 1)
+                  en(p) = u2(p + 1) - u0(p + 1)
+                  en(p + 1) = u2(p) - u0(p)
+               end do
             end do
          end if
+         ! the next row's sums at the positions the blocks left out
+         do k = -1, (n - 2 - 4*nb)/2 - 1   ! p = 0, then 2 + 4 nb .. n - 2
+            p = merge(0, 2 + 4*nb + 2*k, k < 0)
+            sn(p) = u0(p) + u2(p)
+            sn(p + 1) = u0(p + 1) + u2(p + 1)
+            en(p) = u2(p + 1) - u0(p + 1)
+            en(p + 1) = u2(p) - u0(p)
+         end do
          do p = 2 + 4*nb, n - 3
             l = mod(p, 2)
             f(p) = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
