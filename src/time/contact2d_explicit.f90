@@ -13,6 +13,7 @@
 !> The step does no I/O and no allocation.
 module contact2d_explicit
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: iso_fortran_env, only: int8
    use contact2d_kinds, only: wp, i8
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    use contact2d_loading, only: loading_t
@@ -52,9 +53,13 @@ module contact2d_explicit
       type(sweep_t) :: sweep               !< K u, predictor and energy sums in one pass
       !> dofs whose u~ changes after the sweep (loads, prescribed, contact nodes), as indices of
       !> the flattened (2 nnode) arrays, and their v^(n-1/2), v* and u~ of the current step; set
-      !> up by the first advance. The first s_npres are the prescribed dofs in load order.
-      integer, allocatable :: sdof(:)
-      integer :: s_npres = 0
+      !> up by the first advance, in dof order; as runs of consecutive dofs, s_run(:, r) = (first
+      !> dof, its place in the list, length): the loops over them are vector copies and sums.
+      integer, allocatable :: sdof(:), s_run(:, :)
+      real(wp), allocatable :: s_pres(:)   !< 1 at the prescribed dofs of the list, else 0
+      integer, allocatable :: p_dof(:)     !< the dof of each prescribed value (flattened), load order
+      !> per dof (flattened): 0 on the listed dofs, 1 elsewhere (explicit_residual)
+      integer(int8), allocatable :: s_other(:)
       real(wp), allocatable :: s_vold(:), s_vstar(:), s_wstar(:)
       real(wp), allocatable :: s_mass(:)   !< the mass of each listed dof [t]
       integer :: s_ncontact = -1           !< contact nodes when sdof was built
@@ -73,6 +78,11 @@ module contact2d_explicit
       ! automatic damping: u and K u at the last estimate
       real(wp), allocatable :: u_mark(:, :), f_mark(:, :), work(:, :)
       integer, allocatable :: pres_elements(:)   !< elements touching a prescribed dof
+      !> the dofs of pres_elements (flattened), where K du_p is not zero
+      integer, allocatable :: pres_dofs(:)
+      !> per dof (flattened): 1 free, 0 prescribed, -1 free among pres_dofs (rayleigh_blocks)
+      real(wp), allocatable :: rmask(:)
+      real(wp), allocatable :: kdu(:, :)   !< K du_f at pres_dofs (update_damping) [N]
       ! energies (SPEC section 6) [mJ = N mm]
       real(wp) :: kinetic = 0              !< 1/2 v^(n+1/2) M v^(n+1/2)
       real(wp) :: strain = 0               !< 1/2 u^(n+1) K u^n (current when advance returns)
@@ -80,9 +90,10 @@ module contact2d_explicit
       real(wp) :: work_in = 0              !< sum of |external work increments|
       real(wp) :: damping_dissipation = 0
       real(wp) :: initial_kinetic = 0      !< 1/2 v^(-1/2) M v^(-1/2), energy put in at t = 0 (issue 12)
-      !> sum m (v^(n-1/2))^2 (twice the kinetic energy of the last step; formed again from v at
-      !> the start of every advance, so that a velocity set between calls counts)
+      !> sum m (v^(n-1/2))^2: twice the kinetic energy of the last step, formed from v by the
+      !> next advance when vsum_stale (set it when v is changed between advance calls)
       real(wp) :: vsum = 0
+      logical :: vsum_stale = .true.
       logical :: blown_up = .false.
       !> sum m (v^(n+1/2) - v^(n-1/2))^2 / sum m (v^(n+1/2))^2 of the last step: close to 4
       !> for a mode that changes sign every step (the one that grows when dt is too long)
@@ -114,8 +125,8 @@ contains
       type(loading_t), intent(in) :: load
       real(wp), intent(in) :: dt, alpha
       integer, intent(in) :: damping, damping_interval
-      integer :: nnode, e
-      logical, allocatable :: touches(:)
+      integer :: nnode, e, a, n
+      logical, allocatable :: touches(:), mark(:, :)
 
       nnode = size(stiff%mass)
       this%nnode = nnode
@@ -145,6 +156,18 @@ contains
             touches(e) = any(load%free(:, stiff%conn(:, e)) == 0)
          end do
          this%pres_elements = pack([(e, e=1, size(touches))], touches)
+         ! the dofs where K du_p is not zero, and the mask of rayleigh_blocks
+         allocate (mark(2, nnode))
+         mark = .false.
+         do e = 1, size(this%pres_elements)
+            do a = 1, size(stiff%conn, 1)
+               mark(:, stiff%conn(a, this%pres_elements(e))) = .true.
+            end do
+         end do
+         this%pres_dofs = pack([(n, n=1, 2*nnode)], reshape(mark, [2*nnode]))
+         this%rmask = reshape(merge(-load%free, load%free, mark .and. load%free > 0), [2*nnode])
+         allocate (this%kdu(2, nnode))
+         this%kdu = 0
       end if
    end subroutine explicit_init
 
@@ -165,7 +188,10 @@ contains
       ! set-up, outside the step loop: the dofs that change after the sweep
       if (.not. allocated(this%sdof) .or. this%s_ncontact /= merge(contact%nc, 0, contact%active)) &
          call special_dofs(this, load, contact)
-      this%vsum = mass_sum(2*this%nnode, this%mdof, this%v)
+      if (this%vsum_stale) this%vsum = mass_sum(2*this%nnode, this%mdof, this%v)
+      this%vsum_stale = .false.
+      ! v^(n-1/2) at the listed dofs; special_correct keeps it up to date from here on
+      call special_gather(this%s_run, this%v, this%s_vold)
       dt = this%dt
       full = .true.
       do k = 1, nsteps
@@ -175,7 +201,6 @@ contains
          a1 = 1 - 0.5_wp*this%alpha*dt
          a2inv = 1/(1 + 0.5_wp*this%alpha*dt)
          c = dt*dt*a2inv
-         call special_gather(size(this%sdof), this%sdof, this%v, this%s_vold)
          ! one sweep: K u^n, v* (into v), u~ and the energy sums of v*; K u at every node and
          ! the strain energy only on the steps that read them (the last of this call, for the
          ! driver's residual and output; the damping estimate's)
@@ -185,7 +210,7 @@ contains
          call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full)
          ! the dofs changed below: keep v* and u~, give back v^(n-1/2) (loads, reactions and
          ! the contact step use it)
-         call special_keep(size(this%sdof), this%sdof, this%v, this%unew, this%s_vold, this%s_vstar, this%s_wstar)
+         call special_keep(this%s_run, this%v, this%unew, this%s_vold, this%s_vstar, this%s_wstar)
          ! automatic damping: a new alpha from (u^n, K u^n), used from the next step on
          if (this%damping == damping_auto) then
             if (mod(this%step, int(this%damping_interval, i8)) == 0) call this%update_damping(stiff, load)
@@ -203,9 +228,7 @@ contains
             this%fext(comp, node) = this%fext(comp, node) + f
             this%unew(comp, node) = this%unew(comp, node) + c*this%minv(node)*f
          end do
-         do p = 1, load%npres
-            this%unew(load%pcomp(p), load%pnode(p)) = this%cnext(load%pcurve(p))
-         end do
+         call set_prescribed(load%npres, this%p_dof, load%pcurve, this%cnext, this%unew)
          ! 3. contact
          if (contact%active) call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc)
          ! 4a. external work of the reactions (inertial and damping parts included) and loads,
@@ -221,7 +244,7 @@ contains
          end do
          ! 4b. velocities and energies: v^(n+1/2) = v* but at the changed dofs, where it is
          !     (u^(n+1) - u^n)/dt and the sums of the sweep are corrected (in a fixed order)
-         call special_correct(size(this%sdof), this%s_npres, this%sdof, this%s_mass, this%u, this%unew, this%fint, &
+         call special_correct(this%s_run, this%s_pres, this%s_mass, this%u, this%unew, this%fint, &
                               dt, this%alpha, this%s_vold, this%s_vstar, this%s_wstar, this%v, corr, work)
          work = work + workt
          this%external_work = this%external_work + work
@@ -258,8 +281,8 @@ contains
       type(explicit_t), intent(inout) :: this
       type(loading_t), intent(in) :: load
       type(contact_t), intent(in) :: contact
-      logical, allocatable :: mark(:, :)
-      integer :: p, i, n, comp, node
+      logical, allocatable :: mark(:, :), pres(:, :)
+      integer :: p, i, n, r, comp, node
       allocate (mark(2, this%nnode))
       mark = .false.
       do p = 1, load%ntrac
@@ -280,87 +303,142 @@ contains
       do node = 1, this%nnode
          if (any(mark(:, node))) this%s_interior = this%s_interior .or. .not. this%sweep%kept(node)
       end do
-      if (allocated(this%sdof)) deallocate (this%sdof, this%s_vold, this%s_vstar, this%s_wstar, this%s_mass)
-      allocate (this%sdof(n), this%s_vold(n), this%s_vstar(n), this%s_wstar(n), this%s_mass(n))
-      ! the prescribed dofs first, in load order (special_correct: reactions), then the others
-      n = 0
+      if (allocated(this%sdof)) deallocate (this%sdof, this%s_vold, this%s_vstar, this%s_wstar, this%s_mass, &
+                                            this%s_pres, this%s_run, this%s_other)
+      allocate (this%sdof(n), this%s_vold(n), this%s_vstar(n), this%s_wstar(n), this%s_mass(n), this%s_pres(n))
+      allocate (pres(2, this%nnode))
+      pres = .false.
       do p = 1, load%npres
-         node = load%pnode(p)
-         comp = load%pcomp(p)
-         if (.not. mark(comp, node)) cycle
-         mark(comp, node) = .false.
-         n = n + 1
-         this%sdof(n) = 2*(node - 1) + comp
-         this%s_mass(n) = this%mass(node)
+         pres(load%pcomp(p), load%pnode(p)) = .true.
       end do
-      this%s_npres = n
+      this%p_dof = 2*(load%pnode(1:load%npres) - 1) + load%pcomp(1:load%npres)
+      this%s_other = reshape(merge(0_int8, 1_int8, mark), [2*this%nnode])
+      ! the list in dof order, then its runs
+      n = 0
       do node = 1, this%nnode
          do comp = 1, 2
             if (.not. mark(comp, node)) cycle
             n = n + 1
             this%sdof(n) = 2*(node - 1) + comp
             this%s_mass(n) = this%mass(node)
+            this%s_pres(n) = merge(1, 0, pres(comp, node))
          end do
+      end do
+      r = 0
+      do i = 1, n
+         if (i == 1) then
+            r = r + 1
+         else if (this%sdof(i) /= this%sdof(i - 1) + 1) then
+            r = r + 1
+         end if
+      end do
+      allocate (this%s_run(3, r))
+      r = 0
+      do i = 1, n
+         if (i > 1) then
+            if (this%sdof(i) == this%sdof(i - 1) + 1) then
+               this%s_run(3, r) = this%s_run(3, r) + 1
+               cycle
+            end if
+         end if
+         r = r + 1
+         this%s_run(:, r) = [this%sdof(i), i, 1]
       end do
    end subroutine special_dofs
 
+   !> The prescribed values at t_(n+1): w(dof(p)) = c(curve(p)), in load order (flattened w).
+   subroutine set_prescribed(n, dof, curve, c, w)
+      integer, intent(in) :: n, dof(n), curve(n)
+      real(wp), intent(in) :: c(:)
+      real(wp), intent(inout) :: w(*)
+      integer :: p
+      do p = 1, n
+         w(dof(p)) = c(curve(p))
+      end do
+   end subroutine set_prescribed
+
    !> vold = v at the listed dofs (flattened arrays).
-   subroutine special_gather(n, dof, v, vold)
-      integer, intent(in) :: n, dof(n)
+   subroutine special_gather(run, v, vold)
+      integer, intent(in) :: run(:, :)
       real(wp), intent(in) :: v(*)
-      real(wp), intent(out) :: vold(n)
-      integer :: q
-      do q = 1, n
-         vold(q) = v(dof(q))
+      real(wp), intent(inout) :: vold(*)
+      integer :: r, d, q, l, i
+      do r = 1, size(run, 2)
+         d = run(1, r) - 1
+         q = run(2, r) - 1
+         l = run(3, r)
+         ! (a simd loop, not an array copy: that became a call of memcpy per run)
+         !$omp simd
+         do i = 1, l
+            vold(q + i) = v(d + i)
+         end do
       end do
    end subroutine special_gather
 
    !> At the listed dofs, right after the sweep: keep v* and u~, give v^(n-1/2) back to v.
-   subroutine special_keep(n, dof, v, w, vold, vstar, wstar)
-      integer, intent(in) :: n, dof(n)
+   subroutine special_keep(run, v, w, vold, vstar, wstar)
+      integer, intent(in) :: run(:, :)
       real(wp), intent(inout) :: v(*)
-      real(wp), intent(in) :: w(*), vold(n)
-      real(wp), intent(out) :: vstar(n), wstar(n)
-      integer :: q
-      do q = 1, n
-         vstar(q) = v(dof(q))
-         wstar(q) = w(dof(q))
-         v(dof(q)) = vold(q)
+      real(wp), intent(in) :: w(*), vold(*)
+      real(wp), intent(inout) :: vstar(*), wstar(*)
+      integer :: r, d, q, l, i
+      do r = 1, size(run, 2)
+         d = run(1, r) - 1
+         q = run(2, r) - 1
+         l = run(3, r)
+         if (l == 1) then   ! (the loop below is three calls of memcpy)
+            vstar(q + 1) = v(d + 1)
+            wstar(q + 1) = w(d + 1)
+            v(d + 1) = vold(q + 1)
+            cycle
+         end if
+         !$omp simd
+         do i = 1, l
+            vstar(q + i) = v(d + i)
+            wstar(q + i) = w(d + i)
+            v(d + i) = vold(q + i)
+         end do
       end do
    end subroutine special_keep
 
    !> At the listed dofs, after the contact step: v^(n+1/2) = (u^(n+1) - u^n)/dt, and the changes
-   !> of the sweep's sums (m v^2, -, u . K u, m dv^2) from v* and u~ to these values, in list
-   !> order (a^2 - b^2 = (a - b)(a + b); the damping sum is not needed: add_energies). At the
-   !> first np (prescribed) dofs also the work of the reactions, inertial and damping parts
-   !> included, on the centred increment dt vbar = (u^(n+1) - u^(n-1))/2.
-   subroutine special_correct(n, np, dof, mass, u, unew, fint, dt, alpha, vold, vstar, wstar, v, corr, work)
-      integer, intent(in) :: n, np, dof(n)
-      real(wp), intent(in) :: mass(n), u(*), unew(*), fint(*), dt, alpha, vold(n), vstar(n), wstar(n)
-      real(wp), intent(inout) :: v(*)
+   !> of the sweep's sums (m v^2, -, u . K u, m dv^2) from v* and u~ to these values, run by run
+   !> (vector sums in a fixed order; a^2 - b^2 = (a - b)(a + b); the damping sum is not needed:
+   !> add_energies). At the prescribed dofs (pres = 1) also the work of the reactions, inertial
+   !> and damping parts included, on the centred increment dt vbar = (u^(n+1) - u^(n-1))/2.
+   !> vold becomes v^(n+1/2), the next step's v^(n-1/2).
+   subroutine special_correct(run, pres, mass, u, unew, fint, dt, alpha, vold, vstar, wstar, v, corr, work)
+      integer, intent(in) :: run(:, :)
+      real(wp), intent(in) :: pres(*), mass(*), u(*), unew(*), fint(*), dt, alpha, vstar(*), wstar(*)
+      real(wp), intent(inout) :: v(*), vold(*)
       real(wp), intent(out) :: corr(4), work
-      integer :: q, d
+      integer :: r, i, q, d, q0, d0
       real(wp) :: vo, vs, vn, md, c1, c3, c4, vbar, acc, f
       c1 = 0
       c3 = 0
       c4 = 0
       work = 0
-      do q = 1, n
-         d = dof(q)
-         vo = vold(q)
-         vs = vstar(q)
-         vn = (unew(d) - u(d))/dt
-         if (q <= np) then
+      do r = 1, size(run, 2)
+         d0 = run(1, r) - 1
+         q0 = run(2, r) - 1
+         !$omp simd private(q, d, vo, vs, vn, md, vbar, acc, f) reduction(+:c1, c3, c4, work)
+         do i = 1, run(3, r)
+            q = q0 + i
+            d = d0 + i
+            vo = vold(q)
+            vs = vstar(q)
+            vn = (unew(d) - u(d))/dt
             vbar = 0.5_wp*(vn + vo)
             acc = (vn - vo)/dt
             f = mass(q)*(acc + alpha*vbar) + fint(d)
-            work = work + f*dt*vbar
-         end if
-         md = mass(q)*(vn - vs)
-         c1 = c1 + md*(vn + vs)
-         c3 = c3 + (unew(d) - wstar(q))*fint(d)
-         c4 = c4 + md*((vn + vs) - 2*vo)
-         v(d) = vn
+            work = work + pres(q)*(f*dt*vbar)
+            md = mass(q)*(vn - vs)
+            c1 = c1 + md*(vn + vs)
+            c3 = c3 + (unew(d) - wstar(q))*fint(d)
+            c4 = c4 + md*((vn + vs) - 2*vo)
+            v(d) = vn
+            vold(q) = vn   ! v^(n-1/2) of the next step
+         end do
       end do
       corr(1) = c1
       corr(2) = 0
@@ -460,25 +538,29 @@ contains
    !> the Rayleigh quotient of the free part du_f of the displacement increment since the last
    !> estimate, du_f^T K du_f / du_f^T M du_f. Called right after f_int = K u^n, so (u, f_int)
    !> and the stored mark are consistent pairs: K du_f = (f_int - f_mark) - K du_p, and K du_p
-   !> only involves the elements that touch a prescribed dof.
+   !> only involves the elements that touch a prescribed dof. K du_f is formed apart on their
+   !> dofs only (kdu) and put in f_mark as -K du_f; one pass over all dofs then takes
+   !> f_int - f_mark elsewhere, and f_mark itself there (rayleigh_blocks).
    subroutine explicit_update_damping(this, stiff, load)
       class(explicit_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
       type(loading_t), intent(in) :: load
       real(wp) :: num, den
       integer :: p, b
-      ! K du = f_int - f_mark; then subtract K du_p, du_p being zero but on the prescribed dofs
-      call block_difference(2*this%nnode, this%nblock, this%fint, this%f_mark)
+      ! K du = f_int - f_mark on the dofs of the elements that touch a prescribed dof; then
+      ! subtract K du_p there, du_p being zero but on the prescribed dofs
+      call pres_difference(size(this%pres_dofs), this%pres_dofs, this%fint, this%f_mark, this%kdu)
       do p = 1, load%npres
          this%work(load%pcomp(p), load%pnode(p)) = this%u(load%pcomp(p), load%pnode(p)) &
                                                    - this%u_mark(load%pcomp(p), load%pnode(p))
       end do
-      call stiff%apply_elements(this%pres_elements, this%work, this%f_mark, subtract=.true.)
+      call stiff%apply_elements(this%pres_elements, this%work, this%kdu, subtract=.true.)
       do p = 1, load%npres
          this%work(load%pcomp(p), load%pnode(p)) = 0
       end do
+      call pres_negate(size(this%pres_dofs), this%pres_dofs, this%kdu, this%f_mark)
       ! du_f^T K du_f and du_f^T M du_f by blocks; the marks move to (u, f_int)
-      call rayleigh_blocks(2*this%nnode, this%nblock, this%u, this%fint, load%free, this%mdof, &
+      call rayleigh_blocks(2*this%nnode, this%nblock, this%u, this%fint, this%rmask, this%mdof, &
                            this%u_mark, this%f_mark, this%partial)
       num = 0
       den = 0
@@ -489,26 +571,36 @@ contains
       if (num > 0 .and. den > 0) this%alpha_next = min(2*sqrt(num/den), 2/this%dt)
    end subroutine explicit_update_damping
 
-   !> d = a - d on the flattened dofs.
-   subroutine block_difference(ndof, nblock, a, d)
-      integer, intent(in) :: ndof, nblock
-      real(wp), intent(in) :: a(ndof)
-      real(wp), intent(inout) :: d(ndof)
-      integer :: b, i
-      !$omp parallel do schedule(static) private(i) if(ndof >= 2*omp_min_nodes)
-      do b = 1, nblock
-         do i = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
-            d(i) = a(i) - d(i)
-         end do
+   !> d = a - f at the listed dofs (flattened arrays).
+   subroutine pres_difference(n, dof, a, f, d)
+      integer, intent(in) :: n, dof(n)
+      real(wp), intent(in) :: a(*), f(*)
+      real(wp), intent(inout) :: d(*)
+      integer :: q
+      do q = 1, n
+         d(dof(q)) = a(dof(q)) - f(dof(q))
       end do
-      !$omp end parallel do
-   end subroutine block_difference
+   end subroutine pres_difference
 
-   !> Per block: sum of du_f kdu and of m du_f^2 with du_f = (u - u_mark) free; then u_mark = u,
-   !> f_mark = f_int. Block sums are added in order by the caller (thread-independent bits).
-   subroutine rayleigh_blocks(ndof, nblock, u, fint, free, mdof, u_mark, f_mark, partial)
+   !> f = -d at the listed dofs (flattened arrays).
+   subroutine pres_negate(n, dof, d, f)
+      integer, intent(in) :: n, dof(n)
+      real(wp), intent(in) :: d(*)
+      real(wp), intent(inout) :: f(*)
+      integer :: q
+      do q = 1, n
+         f(dof(q)) = -d(dof(q))
+      end do
+   end subroutine pres_negate
+
+   !> Per block: sum of du_f kdu and of m du_f^2 with du_f = (u - u_mark) |mask| and
+   !> kdu = max(mask, 0) f_int - f_mark: f_int - f_mark where mask = 1 (exact: 1 f_int = f_int),
+   !> -f_mark where mask = -1 (exact: 0 f_int - f_mark, also if contracted to an FMA), du_f = 0
+   !> where mask = 0; then u_mark = u, f_mark = f_int. Block sums are added in order by the
+   !> caller (thread-independent bits).
+   subroutine rayleigh_blocks(ndof, nblock, u, fint, mask, mdof, u_mark, f_mark, partial)
       integer, intent(in) :: ndof, nblock
-      real(wp), intent(in) :: u(ndof), fint(ndof), free(ndof), mdof(ndof)
+      real(wp), intent(in) :: u(ndof), fint(ndof), mask(ndof), mdof(ndof)
       real(wp), intent(inout) :: u_mark(ndof), f_mark(ndof)
       real(wp), intent(inout) :: partial(4, nblock)
       integer :: b, i
@@ -519,8 +611,8 @@ contains
          den = 0
          !$omp simd private(du) reduction(+:num, den)
          do i = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
-            du = (u(i) - u_mark(i))*free(i)
-            num = num + du*f_mark(i)
+            du = (u(i) - u_mark(i))*abs(mask(i))
+            num = num + du*(max(mask(i), 0.0_wp)*fint(i) - f_mark(i))
             den = den + mdof(i)*du*du
             u_mark(i) = u(i)
             f_mark(i) = fint(i)
@@ -543,7 +635,14 @@ contains
       real(wp), intent(out), optional :: scale_out
       real(wp) :: rfree, scale
       ! max is exact in any order: the same bits for any number of threads
-      call residual_blocks(2*this%nnode, this%nblock, this%fext, this%fint, this%fc, load%free, rfree, scale)
+      if (allocated(this%s_other)) then
+         ! the step loop writes f_ext and f_c at the listed dofs only: elsewhere r = -f_int on a
+         ! free dof (the prescribed ones are listed), one array read instead of four
+         call residual_others(2*this%nnode, this%nblock, this%fint, this%s_other, rfree)
+         call residual_listed(size(this%sdof), this%sdof, this%fext, this%fint, this%fc, load%free, rfree, scale)
+      else
+         call residual_blocks(2*this%nnode, this%nblock, this%fext, this%fint, this%fc, load%free, rfree, scale)
+      end if
       if (present(scale_out)) scale_out = scale
       if (present(floor)) scale = max(scale, floor)
       if (scale > 0) then
@@ -576,6 +675,42 @@ contains
       end do
       !$omp end parallel do
    end subroutine residual_blocks
+
+   !> The largest |f_int| over the dofs where other = 1, by blocks (vector loops).
+   subroutine residual_others(ndof, nblock, fint, other, rfree)
+      integer, intent(in) :: ndof, nblock
+      real(wp), intent(in) :: fint(ndof)
+      integer(int8), intent(in) :: other(ndof)
+      real(wp), intent(out) :: rfree
+      integer :: b, i
+      rfree = 0
+      !$omp parallel do schedule(static) private(i) reduction(max:rfree) if(ndof >= 2*omp_min_nodes)
+      do b = 1, nblock
+         !$omp simd reduction(max:rfree)
+         do i = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
+            rfree = max(rfree, abs(fint(i))*other(i))
+         end do
+      end do
+      !$omp end parallel do
+   end subroutine residual_others
+
+   !> rfree and scale of residual_blocks over the listed dofs, rfree taken further from its
+   !> value on entry.
+   subroutine residual_listed(n, dof, fext, fint, fc, free, rfree, scale)
+      integer, intent(in) :: n, dof(n)
+      real(wp), intent(in) :: fext(*), fint(*), fc(*), free(*)
+      real(wp), intent(inout) :: rfree
+      real(wp), intent(out) :: scale
+      integer :: q, i
+      real(wp) :: r
+      scale = 0
+      do q = 1, n
+         i = dof(q)
+         r = fext(i) - fint(i) + fc(i)
+         rfree = max(rfree, abs(r*free(i)))
+         scale = max(scale, abs(r*(1 - free(i))), abs(fext(i)), abs(fc(i)))
+      end do
+   end subroutine residual_listed
 
    !> |E_kin0 + W_ext - (E_kin + E_strain + D_friction + D_damping + W_normal)| / max(terms),
    !> E_kin0 the initial kinetic energy (issue 12).

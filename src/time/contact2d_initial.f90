@@ -25,6 +25,7 @@ contains
       do j = 1, 2
          solver%v(j, :) = velocity(j)*free(j, :)
       end do
+      solver%vsum_stale = .true.   ! sum m v^2 formed again by the next advance
       solver%kinetic = 0.5_wp*sum(solver%mass*(solver%v(1, :)**2 + solver%v(2, :)**2))
       solver%initial_kinetic = solver%kinetic
       ! the blow-up guard compares the kinetic energy with the energy put in
