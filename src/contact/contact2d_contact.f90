@@ -25,6 +25,9 @@ module contact2d_contact
    integer, parameter :: multiplier_p1 = 1, multiplier_p0 = 0
    !> |F_t| >= (1 - slip_tol) s_i w_i counts as slip in the status (SPEC section 3).
    real(wp), parameter :: slip_tol = 1.0e-8_wp
+   !> rows of contact_t%rec
+   integer, parameter :: rec_nx = 1, rec_ny = 2, rec_tx = 3, rec_ty = 4, rec_gap = 5, rec_mass = 6, &
+                         rec_cmass = 7, rec_free0 = 8, nrec = 8
 
    !> Settings of the contact set-up (one object instead of a long positional list).
    type :: contact_config_t
@@ -51,6 +54,9 @@ module contact2d_contact
       real(wp) :: penalty_stiffness = 0     !< k_p [MPa/mm]
       logical :: friction = .false.         !< Tresca or Coulomb friction (law allocated)
       class(friction_law_t), allocatable :: law   !< the friction law (docs/friction.md section 2)
+      !> the tangential limits never change (no friction, or law%fixed): slip_limit is
+      !> set once and P1 finds F_n in the same pass as the rest of the step
+      logical :: limits_fixed = .false.
       real(wp) :: friction_coefficient = 0  !< Coulomb mu [-] (0 unless friction = 'coulomb')
       logical :: friction_in_contact_only = .false.   !< tresca_scope = 'contact'
       real(wp), allocatable :: normal(:, :)   !< n_i, outward normal of the body (2, nc)
@@ -86,6 +92,10 @@ module contact2d_contact
       real(wp) :: normal_total = 0          !< sum of F_n [N]
       real(wp) :: tangential_total = 0      !< sum of F_t [N]
       integer(i8) :: clock_ticks = 0        !< time spent in enforce (system_clock ticks)
+      !> per-node constants side by side for the step's loop: rec(rec_*, i) = n_i, t_i, g_i, m_i,
+      !> c/m_i (of the step coefficient c_last), 1 where a zero tangential limit means slip
+      real(wp), allocatable :: rec(:, :)
+      real(wp) :: c_last = -1               !< the c that rec(rec_cmass, :) belongs to
       integer :: stat = 0                   !< /= 0 after a failed LCP solve
       character(len=:), allocatable :: errmsg
    contains
@@ -223,6 +233,13 @@ contains
          end do
       end associate
 
+      allocate (this%rec(nrec, this%nc))
+      this%rec(rec_nx:rec_ny, :) = this%normal
+      this%rec(rec_tx:rec_ty, :) = this%tangent
+      this%rec(rec_gap, :) = this%gap
+      this%rec(rec_mass, :) = this%mass
+      this%rec(rec_cmass, :) = 0
+
       ! friction threshold s_i: uniform, or piecewise linear in the abscissa (held beyond the ends)
       this%friction = cfg%friction == 'tresca'   ! Tresca's s_i below; the law is made after
       this%friction_in_contact_only = cfg%tresca_scope == 'contact'
@@ -250,6 +267,10 @@ contains
       allocate (this%slip_limit(this%nc))
       if (this%friction) call this%law%limits(this%fn, this%fn, this%slip_limit)
       if (.not. this%friction) this%slip_limit = 0
+      this%limits_fixed = .not. this%friction
+      if (this%friction) this%limits_fixed = this%law%fixed
+      ! a zero limit means slip where there is no friction or the tangential dof is free
+      this%rec(rec_free0, :) = merge(1.0_wp, 0.0_wp, this%slides .or. .not. this%friction)
 
       this%penalty = cfg%method == 'penalty'
       this%penalty_stiffness = cfg%penalty_stiffness
@@ -324,15 +345,23 @@ contains
       integer :: i, nc
       nc = this%nc
       y = this%dd*x
-      do i = 1, nc - 1
+      ! row by row, each row's terms in the order of the edge loop it replaces (y(i) gets the
+      ! edge (i-1, i) before the edge (i, i+1)), so the sums are the same
+      if (nc < 2) return
+      y(1) = y(1) + this%dl(1)*x(2)
+      do i = 2, nc - 1
+         y(i) = y(i) + this%dl(i - 1)*x(i - 1)
          y(i) = y(i) + this%dl(i)*x(i + 1)
-         y(i + 1) = y(i + 1) + this%dl(i)*x(i)
       end do
+      y(nc) = y(nc) + this%dl(nc - 1)*x(nc - 1)
    end subroutine d_apply
 
    !> The contact step (SPEC section 4, step 3). u^n, v^(n-1/2) and the trial u~ (unew) in;
    !> unew becomes u^(n+1) = u~ + c M^-1 F_c at the contact nodes and fc(:, node) = F_c.
    !> Energies use the centred increment (u^(n+1) - u^(n-1))/2 (SPEC section 6).
+   !> Two passes over the contact nodes: the normal forces (node by node for P1 and penalty, the
+   !> LCP for P0), then, after the friction law's limits, one pass for the tangential forces, the
+   !> update, energies, diagnostics and status (docs/performance.md, "The contact step").
    subroutine contact_enforce(this, u, v, unew, c, dt, fc)
       class(contact_t), intent(inout) :: this
       real(wp), intent(in) :: u(:, :)      !< u^n [mm]
@@ -342,106 +371,208 @@ contains
       real(wp), intent(in) :: dt           !< [s]
       real(wp), intent(inout) :: fc(:, :)  !< contact force on the body [N]
       integer(i8) :: t0, t1
-      integer :: i, k, st
-      real(wp) :: nx, ny, tx, ty, trial, lim, fx, fy, dx, dy, fnsum, ftsum, wn, wf, rc
+      real(wp) :: rc
       logical :: cells
 
       call system_clock(t0)
       rc = 1/c
       cells = this%multiplier == multiplier_p0 .and. .not. this%penalty
+      ! c/m_i changes only with c (the damping coefficient): kept between steps
+      if (c /= this%c_last) then
+         this%rec(rec_cmass, :) = c/this%mass
+         this%c_last = c
+      end if
       ! normal forces
       if (this%penalty) then
          ! explicit penalty on the gap at t_n: F_n = k_p w_i max(d_i^n, 0)
-         do i = 1, this%nc
-            k = this%node(i)
-            nx = this%normal(1, i)
-            ny = this%normal(2, i)
-            this%fn(i) = this%penalty_stiffness*this%weight(i)*max(u(1, k)*nx + u(2, k)*ny - this%gap(i), 0.0_wp)
-         end do
+         call normal_penalty(this%nc, this%node, this%normal, this%gap, this%weight, this%penalty_stiffness, u, this%fn)
       else if (this%multiplier == multiplier_p1) then
-         ! P1: Lambda_n,i = max(0, m_i d~_i / c), node by node
-         do i = 1, this%nc
-            k = this%node(i)
-            nx = this%normal(1, i)
-            ny = this%normal(2, i)
-            this%fn(i) = max(0.0_wp, this%mass(i)*(unew(1, k)*nx + unew(2, k)*ny - this%gap(i))*rc)
-         end do
+         ! P1: Lambda_n,i = max(0, m_i d~_i / c), node by node (in finish_pass when the limits
+         ! are fixed)
+         if (.not. this%limits_fixed) &
+            call normal_p1(this%nc, this%node, this%normal, this%gap, this%mass, rc, unew, this%fn)
       else
          ! P0: mu >= 0, (D M^-1 D^T) mu - D d~ / c >= 0, complementary; F_n = D mu
-         do i = 1, this%nc
-            k = this%node(i)
-            nx = this%normal(1, i)
-            ny = this%normal(2, i)
-            this%dtil(i) = (unew(1, k)*nx + unew(2, k)*ny - this%gap(i))*rc
-         end do
+         call trial_gaps(this%nc, this%node, this%normal, this%gap, rc, unew, this%dtil)
          call d_apply(this, this%dtil, this%b)
          if (this%stat == 0) call this%lcp%solve(this%b, this%mu, this%stat, this%errmsg)
          call d_apply(this, this%mu, this%fn)
       end if
-      ! tangential forces: the law's limits from this step's normal forces (one call on plain
-      ! arrays), then trial stick, else slip at the limit (docs/friction.md section 1)
-      if (this%friction) then
-         ! contact judged like the status (SPEC section 3): P1 by F_n, P0 on the node's own dual cell
+      ! the law's limits from this step's normal forces (one call on plain arrays); contact
+      ! judged like the status (SPEC section 3): P1 by F_n, P0 on the node's own dual cell
+      if (this%friction .and. .not. this%limits_fixed) then
          if (cells) then
             call this%law%limits(this%fn, this%mu, this%slip_limit)
          else
             call this%law%limits(this%fn, this%fn, this%slip_limit)
          end if
-         do i = 1, this%nc
-            k = this%node(i)
-            tx = this%tangent(1, i)
-            ty = this%tangent(2, i)
-            lim = this%slip_limit(i)
-            trial = this%mass(i)*((unew(1, k) - u(1, k))*tx + (unew(2, k) - u(2, k))*ty)*rc
-            this%ft(i) = sign(min(abs(trial), lim), trial)
-            this%stuck(i) = abs(trial) < lim
-         end do
       end if
-      ! apply; work on the centred increment (u^(n+1) - u^(n-1))/2; diagnostics of u^(n+1)
-      fnsum = 0
-      ftsum = 0
-      wn = 0
-      wf = 0
-      do i = 1, this%nc
-         k = this%node(i)
-         nx = this%normal(1, i)
-         ny = this%normal(2, i)
-         tx = this%tangent(1, i)
-         ty = this%tangent(2, i)
-         fx = -this%fn(i)*nx - this%ft(i)*tx
-         fy = -this%fn(i)*ny - this%ft(i)*ty
-         unew(1, k) = unew(1, k) + (c/this%mass(i))*fx
-         unew(2, k) = unew(2, k) + (c/this%mass(i))*fy
-         fc(1, k) = fx
-         fc(2, k) = fy
-         dx = unew(1, k) - u(1, k)
-         dy = unew(2, k) - u(2, k)
-         if (this%stuck(i)) this%stick_increment_max = max(this%stick_increment_max, abs(dx*tx + dy*ty))
-         dx = 0.5_wp*(dx + dt*v(1, k))
-         dy = 0.5_wp*(dy + dt*v(2, k))
-         wn = wn + this%fn(i)*(dx*nx + dy*ny)
-         wf = wf + this%ft(i)*(dx*tx + dy*ty)
-         fnsum = fnsum + this%fn(i)
-         ftsum = ftsum + this%ft(i)
-         this%dtil(i) = unew(1, k)*nx + unew(2, k)*ny - this%gap(i)
-         st = node_status(this, i)
-         if (st /= this%last_status(i)) this%status_changes = this%status_changes + 1
-         this%last_status(i) = st
-      end do
-      this%normal_work = this%normal_work + wn
-      this%friction_dissipation = this%friction_dissipation + wf
-      this%normal_total = fnsum
-      this%tangential_total = ftsum
+      call finish_pass(this, u, v, unew, fc, dt, rc, cells)
       if (cells) then
          call d_apply(this, this%dtil, this%b)
          this%b = this%b/this%weight
          this%penetration_max = max(this%penetration_max, maxval(this%b))
-      else
-         this%penetration_max = max(this%penetration_max, maxval(this%dtil))
       end if
       call system_clock(t1)
       this%clock_ticks = this%clock_ticks + (t1 - t0)
    end subroutine contact_enforce
+
+   !> P1 normal forces Lambda_n,i = max(0, m_i d~_i / c) (the paper's (12)).
+   pure subroutine normal_p1(nc, node, normal, gap, mass, rc, unew, fn)
+      integer, intent(in) :: nc, node(nc)
+      real(wp), intent(in) :: normal(2, nc), gap(nc), mass(nc), rc, unew(2, *)
+      real(wp), intent(out) :: fn(nc)
+      integer :: i, k
+      real(wp) :: nx, ny
+      do i = 1, nc
+         k = node(i)
+         nx = normal(1, i)
+         ny = normal(2, i)
+         fn(i) = max(0.0_wp, mass(i)*(unew(1, k)*nx + unew(2, k)*ny - gap(i))*rc)
+      end do
+   end subroutine normal_p1
+
+   !> Penalty normal forces k_p w_i max(d_i^n, 0) from the gap at t_n.
+   pure subroutine normal_penalty(nc, node, normal, gap, weight, kp, u, fn)
+      integer, intent(in) :: nc, node(nc)
+      real(wp), intent(in) :: normal(2, nc), gap(nc), weight(nc), kp, u(2, *)
+      real(wp), intent(out) :: fn(nc)
+      integer :: i, k
+      real(wp) :: nx, ny
+      do i = 1, nc
+         k = node(i)
+         nx = normal(1, i)
+         ny = normal(2, i)
+         fn(i) = kp*weight(i)*max(u(1, k)*nx + u(2, k)*ny - gap(i), 0.0_wp)
+      end do
+   end subroutine normal_penalty
+
+   !> P0 trial gaps over c, d~_i / c.
+   pure subroutine trial_gaps(nc, node, normal, gap, rc, unew, dtil)
+      integer, intent(in) :: nc, node(nc)
+      real(wp), intent(in) :: normal(2, nc), gap(nc), rc, unew(2, *)
+      real(wp), intent(out) :: dtil(nc)
+      integer :: i, k
+      real(wp) :: nx, ny
+      do i = 1, nc
+         k = node(i)
+         nx = normal(1, i)
+         ny = normal(2, i)
+         dtil(i) = (unew(1, k)*nx + unew(2, k)*ny - gap(i))*rc
+      end do
+   end subroutine trial_gaps
+
+   !> After the normal forces and the law's limits, one pass over the contact nodes: tangential
+   !> forces (trial stick, else slip at the limit: docs/friction.md section 1), u^(n+1) and F_c,
+   !> work on the centred increment (u^(n+1) - u^(n-1))/2, the diagnostics of u^(n+1) and the
+   !> status (the rule of node_status, evaluated here on the values at hand).
+   subroutine finish_pass(this, u, v, unew, fc, dt, rc, cells)
+      type(contact_t), intent(inout) :: this
+      real(wp), intent(in) :: u(2, *), v(2, *)
+      real(wp), intent(inout) :: unew(2, *), fc(2, *)
+      real(wp), intent(in) :: dt, rc
+      logical, intent(in) :: cells
+      call finish_nodes(this%nc, this%node, this%rec, this%fn, this%slip_limit, this%mu, this%ft, this%stuck, &
+                        this%dtil, this%last_status, this%friction, this%friction_coefficient > 0, cells, &
+                        this%limits_fixed .and. this%multiplier == multiplier_p1 .and. .not. this%penalty, &
+                        u, v, unew, fc, dt, rc, this%stick_increment_max, this%penetration_max, this%status_changes, &
+                        this%normal_work, this%friction_dissipation, this%normal_total, this%tangential_total)
+   end subroutine finish_pass
+
+   !> The loop of finish_pass on plain arrays. rec(:, i): the per-node constants (rec_* indices).
+   subroutine finish_nodes(nc, node, rec, fnv, limv, mu, ftv, stuckv, dtil, last_status, friction, coulomb, cells, &
+                           p1_here, u, v, unew, fc, dt, rc, sim_max, pen_max, status_changes, normal_work, &
+                           friction_dissipation, &
+                           normal_total, tangential_total)
+      integer, intent(in) :: nc, node(nc)
+      real(wp), intent(in) :: rec(nrec, nc), limv(nc), mu(nc)
+      real(wp), intent(inout) :: fnv(nc)
+      real(wp), intent(inout) :: ftv(nc)
+      logical, intent(inout) :: stuckv(nc)
+      real(wp), intent(inout) :: dtil(nc)
+      integer, intent(inout) :: last_status(nc)
+      logical, intent(in) :: friction, coulomb, cells
+      logical, intent(in) :: p1_here   !< find the P1 normal force here (normal_p1's expression)
+      real(wp), intent(in) :: u(2, *), v(2, *)
+      real(wp), intent(inout) :: unew(2, *), fc(2, *)
+      real(wp), intent(in) :: dt, rc
+      real(wp), intent(inout) :: sim_max, pen_max, normal_work, friction_dissipation
+      integer(i8), intent(inout) :: status_changes
+      real(wp), intent(out) :: normal_total, tangential_total
+      integer :: i, k, st
+      real(wp) :: nx, ny, tx, ty, trial, lim, fn, ft, fx, fy, dx, dy, cm, d, fnsum, ftsum, wn, wf, sim, pen
+      integer(i8) :: changes
+      logical :: stuck, touching
+
+      sim = sim_max
+      pen = pen_max
+      changes = 0
+      fnsum = 0
+      ftsum = 0
+      wn = 0
+      wf = 0
+      do i = 1, nc
+         k = node(i)
+         nx = rec(rec_nx, i)
+         ny = rec(rec_ny, i)
+         tx = rec(rec_tx, i)
+         ty = rec(rec_ty, i)
+         if (p1_here) then
+            fn = max(0.0_wp, rec(rec_mass, i)*(unew(1, k)*nx + unew(2, k)*ny - rec(rec_gap, i))*rc)
+            fnv(i) = fn
+         else
+            fn = fnv(i)
+         end if
+         lim = limv(i)
+         if (friction) then
+            trial = rec(rec_mass, i)*((unew(1, k) - u(1, k))*tx + (unew(2, k) - u(2, k))*ty)*rc
+            ! sign(min(|trial|, lim), trial), written so that no spilled value is reloaded wider
+            stuck = abs(trial) < lim
+            ft = merge(trial, sign(lim, trial), stuck)
+            ftv(i) = ft
+            stuckv(i) = stuck
+         else
+            ft = ftv(i)
+            stuck = stuckv(i)
+         end if
+         fx = -fn*nx - ft*tx
+         fy = -fn*ny - ft*ty
+         cm = rec(rec_cmass, i)
+         unew(1, k) = unew(1, k) + cm*fx
+         unew(2, k) = unew(2, k) + cm*fy
+         fc(1, k) = fx
+         fc(2, k) = fy
+         dx = unew(1, k) - u(1, k)
+         dy = unew(2, k) - u(2, k)
+         if (stuck) sim = max(sim, abs(dx*tx + dy*ty))
+         dx = 0.5_wp*(dx + dt*v(1, k))
+         dy = 0.5_wp*(dy + dt*v(2, k))
+         wn = wn + fn*(dx*nx + dy*ny)
+         wf = wf + ft*(dx*tx + dy*ty)
+         fnsum = fnsum + fn
+         ftsum = ftsum + ft
+         d = unew(1, k)*nx + unew(2, k)*ny - rec(rec_gap, i)
+         ! status (node_status, same outcome): with P0 the normal part is judged on the node's
+         ! dual cell; a zero limit is slip where rec_free0 says the node slides freely
+         if (cells) then
+            dtil(i) = d
+            touching = mu(i) > 0 .or. (coulomb .and. fn > 0)
+         else
+            pen = max(pen, d)
+            touching = fn > 0
+         end if
+         st = status_rule(touching, lim, ft, rec(rec_free0, i) > 0)
+         changes = changes + merge(1, 0, st /= last_status(i))
+         last_status(i) = st
+      end do
+      normal_work = normal_work + wn
+      friction_dissipation = friction_dissipation + wf
+      normal_total = fnsum
+      tangential_total = ftsum
+      sim_max = sim
+      pen_max = pen
+      status_changes = status_changes + changes
+   end subroutine finish_nodes
 
    !> Status per contact node (SPEC section 3): 0 separated, 1 stick, 2 slip.
    subroutine contact_status(this, status)
@@ -466,18 +597,21 @@ contains
       else
          touching = this%fn(i) > 0
       end if
-      if (.not. touching) then
-         status = status_separated
-      else if (.not. this%friction .or. (this%slip_limit(i) <= 0 .and. this%slides(i))) then
-         ! no friction, or a zero limit this step (Tresca s_i = 0, Coulomb mu = 0): the node
-         ! slides freely (docs/output.md)
-         status = status_slip
-      else if (this%slip_limit(i) > 0 .and. abs(this%ft(i)) >= (1 - slip_tol)*this%slip_limit(i)) then
-         status = status_slip
-      else
-         status = status_stick
-      end if
+      status = status_rule(touching, this%slip_limit(i), this%ft(i), this%rec(rec_free0, i) > 0)
    end function node_status
+
+   !> The status of a node from its contact state, this step's tangential limit lim and force ft:
+   !> separated if not touching; else slip if |ft| >= (1 - slip_tol) lim > 0, or if lim = 0 where
+   !> a zero limit means sliding freely (free0: no friction law, or the tangential dof is free, as
+   !> with Tresca s_i = 0 or Coulomb mu = 0; docs/output.md); else stick. Without branches (the
+   !> step's pass uses it too).
+   pure elemental integer function status_rule(touching, lim, ft, free0) result(status)
+      logical, intent(in) :: touching, free0
+      real(wp), intent(in) :: lim, ft
+      logical :: slip
+      slip = merge(free0, abs(ft) >= (1 - slip_tol)*lim, lim <= 0)
+      status = merge(merge(status_slip, status_stick, slip), status_separated, touching)
+   end function status_rule
 
    !> Multiplier fields (SPEC section 3): P1 (and penalty) per node, lambda = M_c^-1 F (consistent
    !> 1D mass of Gamma_c, LAPACK dptsv); P0 per dual cell, mu_n and mu_t = D^-1 F_t.

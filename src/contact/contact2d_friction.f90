@@ -13,6 +13,10 @@ module contact2d_friction
    !> A friction law: per-node tangential limits from per-node normal forces.
    type, abstract :: friction_law_t
       character(len=16) :: label = ''   !< the deck's name of the law, set by the member's init
+      !> set by a member's init when limits() does not depend on its fn and closed arguments (the
+      !> same limits every step): the contact step then takes them once and finds F_n and F_t in
+      !> one pass. A law that does not say so is asked every step.
+      logical :: fixed = .false.
    contains
       !> Fill limit(i) >= 0 [N] from this step's nodal normal forces fn(i) >= 0 [N] and the
       !> measure by which node i is judged in contact, closed(i) > 0 (SPEC section 3: F_n,i for P1,
@@ -20,6 +24,7 @@ module contact2d_friction
       procedure(friction_law_limits), deferred :: limits
       !> The deck's name of the law ('tresca', 'coulomb').
       procedure :: name => friction_law_name
+
    end type friction_law_t
 
    abstract interface

@@ -27,6 +27,7 @@ contains
       this%label = 'tresca'
       this%bound = bound
       this%in_contact_only = in_contact_only
+      this%fixed = .not. in_contact_only   ! with tresca_scope = 'all' s_i w_i never change
    end subroutine tresca_law_init
 
    !> limit_i = s_i w_i, or 0 where node i is not in contact with tresca_scope = 'contact'

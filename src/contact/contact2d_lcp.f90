@@ -10,6 +10,7 @@
 module contact2d_lcp
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str
+   use contact2d_band, only: band_cholesky_solve
    implicit none
    private
    public :: lcp_t
@@ -22,10 +23,12 @@ module contact2d_lcp
       integer :: n = 0                      !< size
       integer :: kd = 0                     !< number of super-diagonals
       real(wp), allocatable :: ab(:, :)     !< A in band storage: ab(kd+1+i-j, j) = A(i, j), i <= j
+      real(wp), allocatable :: arow(:, :)   !< A by rows: arow(j-i, i) = A(i, j), |i-j| <= kd (-kd:kd, n)
       logical, allocatable :: active(:)     !< active set of the last solve (warm start)
       ! factorization cache
       logical, allocatable :: fact_set(:)   !< the set the factor belongs to
       logical :: have_factor = .false.
+      logical :: set_moved = .true.         !< active may differ from fact_set (changed since compared)
       integer :: na = 0                     !< size of the factored set
       integer, allocatable :: idx(:)        !< its indices, increasing
       real(wp), allocatable :: fab(:, :)    !< its band Cholesky factor
@@ -48,6 +51,7 @@ contains
       class(lcp_t), intent(out) :: this
       real(wp), intent(in) :: ab(:, :)      !< (kd+1, n)
       integer, intent(in) :: kd
+      integer :: i, o
       this%n = size(ab, 2)
       this%kd = kd
       this%ab = ab
@@ -55,6 +59,14 @@ contains
                 this%fab(kd + 1, this%n), this%rhs(this%n), this%w(this%n))
       this%active = .false.
       this%fact_set = .false.
+      this%set_moved = .true.
+      allocate (this%arow(-kd:kd, this%n))
+      this%arow = 0
+      do i = 1, this%n
+         do o = max(-kd, 1 - i), min(kd, this%n - i)
+            this%arow(o, i) = this%entry(i, i + o)
+         end do
+      end do
    end subroutine lcp_init
 
    !> A(i, j) (zero outside the band).
@@ -70,19 +82,53 @@ contains
       end if
    end function lcp_entry
 
-   !> y = A x.
+   !> y = A x (the rows of A in arow: no branch per entry; the terms in the order of j).
    pure subroutine lcp_matvec(this, x, y)
       class(lcp_t), intent(in) :: this
       real(wp), intent(in) :: x(:)
       real(wp), intent(out) :: y(:)
-      integer :: i, j
-      do i = 1, this%n
-         y(i) = 0
-         do j = max(1, i - this%kd), min(this%n, i + this%kd)
-            y(i) = y(i) + this%entry(i, j)*x(j)
-         end do
-      end do
+      call band_matvec(this%n, this%kd, this%arow, x, y)
    end subroutine lcp_matvec
+
+   pure subroutine band_matvec(n, kd, arow, x, y)
+      integer, intent(in) :: n, kd
+      real(wp), intent(in) :: arow(-kd:kd, n), x(n)
+      real(wp), intent(out) :: y(n)
+      integer :: i
+      real(wp) :: s
+      if (kd == 2 .and. n > 4) then
+         ! the P0 LCP's five bands: the interior rows written out (same terms, same order)
+         call band_rows(n, kd, arow, x, y, 1, 2)
+         do i = 3, n - 2
+            s = 0
+            s = s + arow(-2, i)*x(i - 2)
+            s = s + arow(-1, i)*x(i - 1)
+            s = s + arow(0, i)*x(i)
+            s = s + arow(1, i)*x(i + 1)
+            s = s + arow(2, i)*x(i + 2)
+            y(i) = s
+         end do
+         call band_rows(n, kd, arow, x, y, n - 1, n)
+      else
+         call band_rows(n, kd, arow, x, y, 1, n)
+      end if
+   end subroutine band_matvec
+
+   !> Rows i1..i2 of y = A x, the terms in the order of j.
+   pure subroutine band_rows(n, kd, arow, x, y, i1, i2)
+      integer, intent(in) :: n, kd, i1, i2
+      real(wp), intent(in) :: arow(-kd:kd, n), x(n)
+      real(wp), intent(inout) :: y(n)
+      integer :: i, j
+      real(wp) :: s
+      do i = i1, i2
+         s = 0
+         do j = max(1, i - kd), min(n, i + kd)
+            s = s + arow(j - i, i)*x(j)
+         end do
+         y(i) = s
+      end do
+   end subroutine band_rows
 
    !> Solve the LCP for b. stat /= 0 (with a message) if LAPACK fails or no method converges.
    subroutine lcp_solve(this, b, mu, stat, errmsg)
@@ -116,6 +162,7 @@ contains
             end if
          end do
          if (.not. changed) return
+         this%set_moved = .true.
       end do
       ! cycling: Murty's least-index principal pivoting (finite for P-matrices)
       this%pivoting_solves = this%pivoting_solves + 1
@@ -135,6 +182,7 @@ contains
          end do
          if (flip == 0) return
          this%active(flip) = .not. this%active(flip)
+         this%set_moved = .true.
       end do
       stat = 1
       errmsg = 'P0 contact LCP: no convergence after '//str(this%iterations)// &
@@ -149,11 +197,16 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(inout) :: errmsg
       integer :: p, q, info
-      external :: dpbtrf, dpbtrs
+      external :: dpbtrf
 
       stat = 0
       mu = 0
-      if (.not. (this%have_factor .and. all(this%fact_set .eqv. this%active))) then
+      ! the factor is kept while the set is unchanged (compared only after lcp_solve moved it)
+      if (this%set_moved) then
+         if (this%have_factor) this%have_factor = all(this%fact_set .eqv. this%active)
+         this%set_moved = .false.
+      end if
+      if (.not. this%have_factor) then
          this%na = 0
          do p = 1, this%n
             if (this%active(p)) then
@@ -185,12 +238,8 @@ contains
          do p = 1, this%na
             this%rhs(p) = b(this%idx(p))
          end do
-         call dpbtrs('U', this%na, this%kd, 1, this%fab, this%kd + 1, this%rhs, this%n, info)
-         if (info /= 0) then
-            stat = 1
-            errmsg = 'P0 contact LCP: LAPACK dpbtrs failed (info = '//str(info)//')'
-            return
-         end if
+         ! dpbtrs('U') of reference LAPACK, operation for operation (contact2d_band)
+         call band_cholesky_solve(this%na, this%kd, this%fab, this%kd + 1, this%rhs)
          do p = 1, this%na
             mu(this%idx(p)) = this%rhs(p)
          end do
