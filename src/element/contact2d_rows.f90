@@ -256,59 +256,12 @@ contains
       integer, intent(in) :: xstart(nnode + 1), xrow(nx)
       real(wp), intent(in) :: ud(4*nnode)
       real(wp), intent(inout) :: g(2*r0 - 1:2*r1)
-      integer :: r, i, k, l, rr
+      integer :: r, k, l
       integer(i8) :: j
-      real(wp) :: p(4), q(4), s(4), p2(4), q2(4), s2(4), a(4), b(4)
+      real(wp) :: p(4), p2(4), a(4), b(4)
       do r = r0, r1 - 1, 2
-         rr = r + 1
-         p = 0
-         q = 0
-         s = 0
-         do i = 1, ell_width, 3
-            j = int(col(i, r), i8)
-            !$omp simd simdlen(4)
-            do l = 1, 4
-               p(l) = p(l) + blk(l, i, r)*ud(j + l)
-            end do
-            j = int(col(i + 1, r), i8)
-            !$omp simd simdlen(4)
-            do l = 1, 4
-               q(l) = q(l) + blk(l, i + 1, r)*ud(j + l)
-            end do
-            j = int(col(i + 2, r), i8)
-            !$omp simd simdlen(4)
-            do l = 1, 4
-               s(l) = s(l) + blk(l, i + 2, r)*ud(j + l)
-            end do
-         end do
-         !$omp simd simdlen(4)
-         do l = 1, 4
-            p(l) = (p(l) + q(l)) + s(l)
-         end do
-         p2 = 0
-         q2 = 0
-         s2 = 0
-         do i = 1, ell_width, 3
-            j = int(col(i, rr), i8)
-            !$omp simd simdlen(4)
-            do l = 1, 4
-               p2(l) = p2(l) + blk(l, i, rr)*ud(j + l)
-            end do
-            j = int(col(i + 1, rr), i8)
-            !$omp simd simdlen(4)
-            do l = 1, 4
-               q2(l) = q2(l) + blk(l, i + 1, rr)*ud(j + l)
-            end do
-            j = int(col(i + 2, rr), i8)
-            !$omp simd simdlen(4)
-            do l = 1, 4
-               s2(l) = s2(l) + blk(l, i + 2, rr)*ud(j + l)
-            end do
-         end do
-         !$omp simd simdlen(4)
-         do l = 1, 4
-            p2(l) = (p2(l) + q2(l)) + s2(l)
-         end do
+         p = row_sum(col(:, r), blk(:, :, r), ud)
+         p2 = row_sum(col(:, r + 1), blk(:, :, r + 1), ud)
          a(1) = p(1)
          a(2) = p(2)
          a(3) = p2(1)
@@ -323,31 +276,7 @@ contains
          end do
       end do
       if (mod(r1 - r0 + 1, 2) == 1) then
-         r = r1
-         p = 0
-         q = 0
-         s = 0
-         do i = 1, ell_width, 3
-            j = int(col(i, r), i8)
-            !$omp simd simdlen(4)
-            do l = 1, 4
-               p(l) = p(l) + blk(l, i, r)*ud(j + l)
-            end do
-            j = int(col(i + 1, r), i8)
-            !$omp simd simdlen(4)
-            do l = 1, 4
-               q(l) = q(l) + blk(l, i + 1, r)*ud(j + l)
-            end do
-            j = int(col(i + 2, r), i8)
-            !$omp simd simdlen(4)
-            do l = 1, 4
-               s(l) = s(l) + blk(l, i + 2, r)*ud(j + l)
-            end do
-         end do
-         !$omp simd simdlen(4)
-         do l = 1, 4
-            p(l) = (p(l) + q(l)) + s(l)
-         end do
+         p = row_sum(col(:, r1), blk(:, :, r1), ud)
          g(2*r1 - 1) = p(1) + p(3)
          g(2*r1) = p(2) + p(4)
       end if
@@ -359,6 +288,40 @@ contains
          g(2*r) = g(2*r) + (xblk(4, k)*ud(j + 1) + xblk(2, k)*ud(j + 2))
       end do
    end subroutine products
+
+   !> One block row's sum: blocks 1, 4, 7 into p; 2, 5, 8 into q; 3, 6, 9 into s (each block
+   !> one 4-wide multiply-add against u spread as (ux, uy, uy, ux)), returned as (p + q) + s.
+   pure function row_sum(col, blk, ud) result(p)
+      integer(int32), intent(in) :: col(ell_width)
+      real(wp), intent(in) :: blk(4, ell_width), ud(*)
+      real(wp) :: p(4), q(4), s(4)
+      integer :: i, l
+      integer(i8) :: j
+      p = 0
+      q = 0
+      s = 0
+      do i = 1, ell_width, 3
+         j = int(col(i), i8)
+         !$omp simd simdlen(4)
+         do l = 1, 4
+            p(l) = p(l) + blk(l, i)*ud(j + l)
+         end do
+         j = int(col(i + 1), i8)
+         !$omp simd simdlen(4)
+         do l = 1, 4
+            q(l) = q(l) + blk(l, i + 1)*ud(j + l)
+         end do
+         j = int(col(i + 2), i8)
+         !$omp simd simdlen(4)
+         do l = 1, 4
+            s(l) = s(l) + blk(l, i + 2)*ud(j + l)
+         end do
+      end do
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         p(l) = (p(l) + q(l)) + s(l)
+      end do
+   end function row_sum
 
    !> Predictor and sums on the n flat dofs of a chunk while it is in cache (as row_update of
    !> contact2d_sweep; the second sum is left zero, as by the grid rows: the caller has it from
