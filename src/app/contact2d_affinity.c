@@ -5,7 +5,14 @@
  * all of its CPUs again: a nudge, not a binding, so the scheduler can still move it away from
  * a busy core. */
 #define _GNU_SOURCE
+#include <fcntl.h>
 #include <sched.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+#include <unistd.h>
 
 int contact2d_affinity_nudge(int k)
 {
@@ -23,4 +30,48 @@ int contact2d_affinity_nudge(int k)
    CPU_SET(c, &one);
    if (sched_setaffinity(0, sizeof one, &one) != 0) return 1;   /* moves the thread now */
    return sched_setaffinity(0, sizeof all, &all) != 0;
+}
+
+/* How busy the other processes keep the CPUs (issue 13, docs/performance.md "TUNER"): the
+ * seconds the CPUs allowed to this process have been idle since boot (/proc/stat: idle + iowait
+ * of each allowed CPU, kept by the kernel to the tick, 1/CLK_TCK s), the CPU seconds of this
+ * process (getrusage: all its threads, to the microsecond), a monotonic clock in seconds and
+ * the number of allowed CPUs. Between two calls, other processes kept
+ * ncpu*dwall - didle - down CPU-seconds busy. 0 on success; no allocation (a stack buffer). */
+int contact2d_cpu_times(double *idle, double *own, double *wall, int *ncpu)
+{
+   char buf[16384];
+   cpu_set_t allowed;
+   struct rusage ru;
+   struct timespec ts;
+   unsigned long long v[5], ticks = 0;
+   long hz = sysconf(_SC_CLK_TCK);
+   ssize_t n, got = 0;
+   char *p, *end;
+   int fd, cpu, count = 0;
+   if (hz <= 0 || sched_getaffinity(0, sizeof allowed, &allowed) != 0) return 1;
+   fd = open("/proc/stat", O_RDONLY | O_CLOEXEC);
+   if (fd < 0) return 1;
+   while (got < (ssize_t)sizeof buf - 1 && (n = read(fd, buf + got, sizeof buf - 1 - got)) > 0) got += n;
+   close(fd);
+   buf[got] = '\0';
+   /* lines "cpuN user nice system idle iowait ...": the first line (all CPUs) has no N */
+   for (p = buf; p < buf + got; p = end + 1) {
+      end = strchr(p, '\n');
+      if (end == NULL || strncmp(p, "cpu", 3) != 0) break;
+      if (p[3] >= '0' && p[3] <= '9') {
+         cpu = (int)strtol(p + 3, &p, 10);
+         if (sscanf(p, "%llu %llu %llu %llu %llu", &v[0], &v[1], &v[2], &v[3], &v[4]) != 5) return 1;
+         if (cpu >= 0 && cpu < CPU_SETSIZE && CPU_ISSET(cpu, &allowed)) {
+            ticks += v[3] + v[4];
+            count++;
+         }
+      }
+   }
+   if (count == 0 || getrusage(RUSAGE_SELF, &ru) != 0 || clock_gettime(CLOCK_MONOTONIC, &ts) != 0) return 1;
+   *idle = (double)ticks/(double)hz;
+   *own = (double)(ru.ru_utime.tv_sec + ru.ru_stime.tv_sec) + 1e-6*(double)(ru.ru_utime.tv_usec + ru.ru_stime.tv_usec);
+   *wall = (double)ts.tv_sec + 1e-9*(double)ts.tv_nsec;
+   *ncpu = count;
+   return 0;
 }

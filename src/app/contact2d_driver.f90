@@ -52,6 +52,7 @@ contains
       character(len=:), allocatable :: static_msg
 
       call system_clock(clock0, rate)
+      call tuner%begin()  ! the set-up window of the thread tuner (contact2d_threads)
       static_dist = huge(1.0_wp)
       call cli_parse(cli, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg//' (usage: contact2d --help)')
