@@ -75,3 +75,20 @@ int contact2d_cpu_times(double *idle, double *own, double *wall, int *ncpu)
    *ncpu = count;
    return 0;
 }
+
+/* Runnable threads on the machine other than the caller, now (/proc/loadavg's fourth field,
+ * "running/total", counts every runnable thread, the caller included); -1 when unknown. */
+int contact2d_runnable_others(void)
+{
+   char buf[256];
+   ssize_t got;
+   int fd = open("/proc/loadavg", O_RDONLY | O_CLOEXEC), running, total;
+   double a, b, c;
+   if (fd < 0) return -1;
+   got = read(fd, buf, sizeof buf - 1);
+   close(fd);
+   if (got <= 0) return -1;
+   buf[got] = '\0';
+   if (sscanf(buf, "%lf %lf %lf %d/%d", &a, &b, &c, &running, &total) != 5 || running < 1) return -1;
+   return running - 1;
+}

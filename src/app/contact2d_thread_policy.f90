@@ -8,12 +8,14 @@
 !>   threads and is not counted); a probe compares their means, the check that leaves the team
 !>   between probes their median (of two: the smaller), so one slow chunk (a time slice lost to
 !>   another process, a rare slow region entry) does not send an idle machine's run to one thread.
-!> - The other count is probed now and then for `probe_chunks` chunks (its first not counted); a
-!>   probe whose first counted chunk is probe_abort times slower than the count in use ends at once.
+!> - The other count is probed now and then for `probe_chunks` chunks (the team's first not
+!>   counted, one thread's probe a chunk shorter: nothing to wake); a team probe whose first
+!>   counted chunk is probe_abort times slower than one thread ends at once.
 !> - The team is left as soon as its estimate is team_back times one thread's; each time the team
 !>   loses (a probe or this check) the wait before the next team probe doubles, up to
-!>   probe_every_max chunks; a win resets it. Each probe of one thread that keeps the team doubles
-!>   the wait before the next such probe.
+!>   probe_every_max chunks; a win resets it. On the team one thread is probed once early (the
+!>   check above needs its time), then after 4 probe_every chunks, doubled per probe that keeps
+!>   the team: the check, not these probes, is what catches a team slowed by a new load.
 !> - Other processes' CPUs (`others`, from /proc/stat; negative when unknown): a run starts on the
 !>   team when they were idle during the set-up, and a quiet machine brings back a team that was
 !>   left (after quiet_gap chunks, doubled per loss), so one slow stretch does not keep a run on one
@@ -117,8 +119,8 @@ contains
       end if
       if (this%probing > 0) then
          this%probing = this%probing - 1
-         ! a first counted chunk much slower than the count in use ends the probe
-         if (this%probing > 0 .and. this%nrecent(k) == 1 .and. this%nrecent(3 - k) > 0) then
+         ! a first counted chunk of the team much slower than one thread ends the probe
+         if (k == full_team .and. this%probing > 0 .and. this%nrecent(k) == 1 .and. this%nrecent(3 - k) > 0) then
             if (this%estimate(k, .false.) > probe_abort*this%estimate(3 - k, .false.)) this%probing = 0
          end if
          if (this%probing > 0) return
@@ -151,7 +153,7 @@ contains
       else
          ! on the team: one thread's estimate soon (team_back needs it), then rarely
          if ((this%nrecent(one_thread) == 0 .and. this%nrecent(full_team) >= first_probe - 1) .or. &
-             this%chunks >= min(probe_every*2**min(this%wins, 4), probe_every_max)) &
+             this%chunks >= min(probe_every*2**min(this%wins + 2, 4), probe_every_max)) &
             call begin_probe(this)
       end if
    end subroutine policy_chunk
@@ -168,11 +170,17 @@ contains
       if (quiet) team_wait = min(team_wait, quiet_gap*2**min(this%losses, 6))
    end function team_wait
 
+   !> A probe of the other count: the team's first chunk wakes its threads and is not counted,
+   !> one thread needs no waking (its probe is one chunk shorter).
    pure subroutine begin_probe(this)
       type(thread_policy_t), intent(inout) :: this
       this%before = this%current
       call use_count(this, 3 - this%current)
       this%probing = probe_chunks
+      if (this%current == one_thread) then
+         this%fresh = .false.
+         this%probing = probe_chunks - 1
+      end if
    end subroutine begin_probe
 
    pure subroutine lose(this)

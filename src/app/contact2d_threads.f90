@@ -21,8 +21,11 @@ module contact2d_threads
    !> shortest window over which other processes' CPU use is measured (seconds): /proc/stat counts
    !> idle time in ticks of 10 ms, so over 0.1 s the error is below 0.2 CPU on two CPUs
    real(wp), parameter :: window_run = 0.1_wp
-   !> the set-up window (program start to the step loop) is used from this length on
-   real(wp), parameter :: window_start = 0.02_wp
+   !> the set-up window (program start to the step loop) is used from this length on; over it
+   !> (tens of ms) /proc/stat's ticks make an error of up to 2 ticks/window CPUs, so the start
+   !> counts the other CPUs idle below quiet_start, and only when no other thread was runnable at
+   !> the window's two ends (a CPU-bound process always is)
+   real(wp), parameter :: window_start = 0.02_wp, quiet_start = 0.5_wp
 
    interface
       !> Move the calling thread to the k-th CPU allowed to it, then allow them all again
@@ -38,6 +41,11 @@ module contact2d_threads
          real(c_double), intent(out) :: idle, own, wall
          integer(c_int), intent(out) :: ncpu
       end function cpu_times
+      !> Runnable threads on the machine other than the caller, now (contact2d_affinity.c);
+      !> -1 when unknown.
+      integer(c_int) function runnable_others() bind(C, name='contact2d_runnable_others')
+         import :: c_int
+      end function runnable_others
    end interface
 
    !> one reading of contact2d_cpu_times, and system_clock's count then (a cheap test of the
@@ -55,6 +63,7 @@ module contact2d_threads
       integer :: current = 1             !< threads in use
       type(thread_policy_t) :: policy
       type(cpu_sample_t) :: mark         !< the start of the current window of CPU use
+      integer :: runnable = -1           !< other runnable threads at the program's start
       real(wp) :: others = -1            !< other processes' CPUs over the latest window (< 0: unknown)
       real(wp) :: others_start = -1      !< ... over the set-up
       integer :: switches = 0            !< changes of the thread count
@@ -71,6 +80,7 @@ contains
    subroutine tuner_begin(this)
       class(thread_tuner_t), intent(inout) :: this
       this%mark = cpu_sample()
+      this%runnable = runnable_others()
    end subroutine tuner_begin
 
    !> Active if OMP_NUM_THREADS is unset, the machine has more than one thread and the mesh is
@@ -89,7 +99,12 @@ contains
       if (.not. this%active) return
       call measure(this, window_start)
       this%others_start = this%others
-      call this%policy%start(this%others_start)
+      if (this%others_start >= 0 .and. this%others_start < quiet_start .and. &
+          this%runnable == 0 .and. runnable_others() == 0) then
+         call this%policy%start(0.0_wp)
+      else
+         call this%policy%start(max(this%others_start, quiet_start))
+      end if
       this%current = 1
       call omp_set_num_threads(1)
       call apply(this)
