@@ -5,14 +5,15 @@
 !> count and measures; tests/app feeds synthetic chunk times.
 !>
 !> - Each count keeps its last `window` counted chunks (the first chunk after a switch wakes the
-!>   threads and is not counted); a probe compares their means, the check that leaves the team
-!>   between probes their median (of two: the smaller), so one slow chunk (a time slice lost to
-!>   another process, a rare slow region entry) does not send an idle machine's run to one thread.
+!>   threads and is not counted); a probe compares their means. Between probes the team is left
+!>   when the median of its latest three chunks, or the mean of its window (three chunks at
+!>   least), is team_back times one thread's mean: one slow chunk among many (a time slice lost,
+!>   a rare slow region entry) does not send an idle machine's run to one thread, a team slow on
+!>   every chunk or on every third (sharing a core by time slices) is left.
 !> - The other count is probed now and then for `probe_chunks` chunks (the team's first not
 !>   counted, one thread's probe a chunk shorter: nothing to wake); a team probe whose first
 !>   counted chunk is probe_abort times slower than one thread ends at once.
-!> - The team is left as soon as its estimate is team_back times one thread's; each time the team
-!>   loses (a probe or this check) the wait before the next team probe doubles, up to
+!> - Each time the team loses (a probe or the check above) the wait before the next team probe doubles, up to
 !>   probe_every_max chunks; a win resets it. On the team one thread is probed once early (the
 !>   check above needs its time), then after 4 probe_every chunks, doubled per probe that keeps
 !>   the team: the check, not these probes, is what catches a team slowed by a new load.
@@ -28,8 +29,8 @@ module contact2d_thread_policy
    public :: thread_policy_t
 
    integer, parameter, public :: one_thread = 1, full_team = 2
-   !> counted chunks per count in the estimate
-   integer, parameter, public :: window = 3
+   !> counted chunks per count kept for the estimates
+   integer, parameter, public :: window = 8
    !> chunks before the first probe of the other count, between probes (doubled per loss of the
    !> team, or per probe of one thread that kept it, up to probe_every_max), chunks per probe
    integer, parameter, public :: first_probe = 4, probe_every = 40, probe_every_max = 640, probe_chunks = 3
@@ -75,10 +76,10 @@ contains
       this%first_wait = merge(probe_every, first_probe, others > busy_above)
    end subroutine policy_start
 
-   !> Seconds per step of a count over its last counted chunks: their mean (robust = .false., for
-   !> the choice after a probe: a team that shares a core loses every other chunk to a time slice,
-   !> and only the mean shows it), or their median, of two the smaller (robust = .true., for
-   !> leaving the team between probes: one slow chunk is not enough); 0 when none.
+   !> Seconds per step of a count: the mean of its last counted chunks (robust = .false.: the
+   !> cost, also of a team that shares a core and loses a time slice now and then), or the median
+   !> of the latest three, of two the smaller (robust = .true.: a team that became slow, not one
+   !> slow chunk); 0 when none.
    pure real(wp) function policy_estimate(this, k, robust) result(e)
       class(thread_policy_t), intent(in) :: this
       integer, intent(in) :: k
@@ -106,7 +107,7 @@ contains
       real(wp), intent(in) :: seconds, others
       integer, intent(in) :: nsteps
       integer :: k, best
-      real(wp) :: e1, e2
+      real(wp) :: e1
       if (nsteps <= 0) return
       k = this%current
       this%chunks = this%chunks + 1
@@ -139,10 +140,11 @@ contains
          call use_count(this, best)
          return
       end if
-      ! the team slower than one thread: back to one thread now
+      ! the team slower than one thread: back to one thread now (slow lately, or costly on average)
       e1 = this%estimate(one_thread, .false.)
-      e2 = this%estimate(full_team, .true.)
-      if (k == full_team .and. this%nrecent(full_team) >= 2 .and. e1 > 0 .and. e2 > team_back*e1) then
+      if (k == full_team .and. this%nrecent(full_team) >= 2 .and. e1 > 0 .and. &
+          (this%estimate(full_team, .true.) > team_back*e1 .or. &
+           (this%nrecent(full_team) >= 3 .and. this%estimate(full_team, .false.) > team_back*e1))) then
          call lose(this)
          call use_count(this, one_thread)
          return

@@ -19,8 +19,9 @@ module contact2d_threads
    public :: thread_tuner_t
 
    !> shortest window over which other processes' CPU use is measured (seconds): /proc/stat counts
-   !> idle time in ticks of 10 ms, so over 0.1 s the error is below 0.2 CPU on two CPUs
-   real(wp), parameter :: window_run = 0.1_wp
+   !> idle time in ticks of 10 ms, so over 0.05 s the error is below 0.4 CPU on two CPUs: a
+   !> CPU-bound process never looks like an idle CPU (quiet_below in contact2d_thread_policy)
+   real(wp), parameter :: window_run = 0.05_wp
    !> the set-up window (program start to the step loop) is used from this length on; over it
    !> (tens of ms) /proc/stat's ticks make an error of up to 2 ticks/window CPUs, so the start
    !> counts the other CPUs idle below quiet_start, and only when no other thread was runnable at
@@ -41,6 +42,10 @@ module contact2d_threads
          real(c_double), intent(out) :: idle, own, wall
          integer(c_int), intent(out) :: ncpu
       end function cpu_times
+      !> The CPU the calling thread runs on (glibc).
+      integer(c_int) function sched_getcpu() bind(C, name='sched_getcpu')
+         import :: c_int
+      end function sched_getcpu
       !> Runnable threads on the machine other than the caller, now (contact2d_affinity.c);
       !> -1 when unknown.
       integer(c_int) function runnable_others() bind(C, name='contact2d_runnable_others')
@@ -67,6 +72,7 @@ module contact2d_threads
       real(wp) :: others = -1            !< other processes' CPUs over the latest window (< 0: unknown)
       real(wp) :: others_start = -1      !< ... over the set-up
       integer :: switches = 0            !< changes of the thread count
+      integer :: nudges = 0              !< team spread again after a chunk with two threads on one CPU
       integer(8) :: steps(2) = 0         !< steps run with one thread and with nmax
    contains
       procedure :: begin => tuner_begin
@@ -121,6 +127,7 @@ contains
       k = merge(1, 2, this%current == 1)
       this%steps(k) = this%steps(k) + nsteps
       if (.not. this%active) return
+      if (this%current > 1) call keep_apart(this)
       call measure(this, window_run)
       call this%policy%chunk(seconds, nsteps, this%others)
       call apply(this)
@@ -150,6 +157,31 @@ contains
       end if
       this%mark = now
    end subroutine measure
+
+   !> After a team chunk: if two threads of the team run on one CPU (a worker that slept is woken
+   !> on the waker's CPU on the project's VM and stays there while both are busy), spread the
+   !> team again. One small parallel region per chunk (about a microsecond while the threads spin).
+   subroutine keep_apart(this)
+      type(thread_tuner_t), intent(inout) :: this
+      integer, parameter :: most = 64
+      integer(c_int) :: cpus(0:most - 1), rc
+      integer :: i, n
+      logical :: shared
+      n = min(this%current, most)
+      cpus = -1
+      !$omp parallel num_threads(n)
+      if (omp_get_thread_num() < most) cpus(omp_get_thread_num()) = sched_getcpu()
+      !$omp end parallel
+      shared = .false.
+      do i = 1, n - 1
+         if (cpus(i) >= 0) shared = shared .or. any(cpus(0:i - 1) == cpus(i))
+      end do
+      if (.not. shared) return
+      this%nudges = this%nudges + 1
+      !$omp parallel num_threads(n) private(rc)
+      rc = affinity_nudge(int(omp_get_thread_num(), c_int))
+      !$omp end parallel
+   end subroutine keep_apart
 
    type(cpu_sample_t) function cpu_sample() result(s)
       call system_clock(s%count)
