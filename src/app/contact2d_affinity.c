@@ -5,6 +5,7 @@
  * all of its CPUs again: a nudge, not a binding, so the scheduler can still move it away from
  * a busy core. */
 #define _GNU_SOURCE
+#include <dirent.h>
 #include <fcntl.h>
 #include <sched.h>
 #include <stdio.h>
@@ -76,19 +77,41 @@ int contact2d_cpu_times(double *idle, double *own, double *wall, int *ncpu)
    return 0;
 }
 
-/* Runnable threads on the machine other than the caller, now (/proc/loadavg's fourth field,
- * "running/total", counts every runnable thread, the caller included); -1 when unknown. */
+/* Runnable threads on the machine other than this process's, now: /proc/loadavg's fourth field
+ * ("running/total") counts every runnable thread, this process's own (the caller, and OpenMP
+ * workers still spinning after a parallel region) included; those are counted from
+ * /proc/self/task/<tid>/stat (state R) and taken off. -1 when unknown. Called twice per run,
+ * outside the step loop (opendir allocates). */
 int contact2d_runnable_others(void)
 {
-   char buf[256];
+   char buf[512], path[64];
    ssize_t got;
-   int fd = open("/proc/loadavg", O_RDONLY | O_CLOEXEC), running, total;
+   int fd = open("/proc/loadavg", O_RDONLY | O_CLOEXEC), running, total, own = 0;
    double a, b, c;
+   DIR *dir;
+   struct dirent *e;
+   char *p;
    if (fd < 0) return -1;
    got = read(fd, buf, sizeof buf - 1);
    close(fd);
    if (got <= 0) return -1;
    buf[got] = '\0';
    if (sscanf(buf, "%lf %lf %lf %d/%d", &a, &b, &c, &running, &total) != 5 || running < 1) return -1;
-   return running - 1;
+   dir = opendir("/proc/self/task");
+   if (dir == NULL) return -1;
+   while ((e = readdir(dir)) != NULL) {
+      if (e->d_name[0] < '0' || e->d_name[0] > '9') continue;
+      snprintf(path, sizeof path, "/proc/self/task/%.20s/stat", e->d_name);
+      fd = open(path, O_RDONLY | O_CLOEXEC);
+      if (fd < 0) continue;
+      got = read(fd, buf, sizeof buf - 1);
+      close(fd);
+      if (got <= 0) continue;
+      buf[got] = '\0';
+      p = strrchr(buf, ')');           /* "tid (name) S ...": the state follows the name */
+      if (p != NULL && p[1] == ' ' && p[2] == 'R') own++;
+   }
+   closedir(dir);
+   if (own < 1) own = 1;
+   return running > own ? running - own : 0;
 }

@@ -46,7 +46,7 @@ module contact2d_threads
       integer(c_int) function sched_getcpu() bind(C, name='sched_getcpu')
          import :: c_int
       end function sched_getcpu
-      !> Runnable threads on the machine other than the caller, now (contact2d_affinity.c);
+      !> Runnable threads on the machine other than this process's, now (contact2d_affinity.c);
       !> -1 when unknown.
       integer(c_int) function runnable_others() bind(C, name='contact2d_runnable_others')
          import :: c_int
@@ -72,6 +72,7 @@ module contact2d_threads
       real(wp) :: others = -1            !< other processes' CPUs over the latest window (< 0: unknown)
       real(wp) :: others_start = -1      !< ... over the set-up
       integer :: switches = 0            !< changes of the thread count
+      integer :: started = 1             !< threads of the first chunk
       integer :: nudges = 0              !< team spread again after a chunk with two threads on one CPU
       integer(8) :: steps(2) = 0         !< steps run with one thread and with nmax
    contains
@@ -115,6 +116,7 @@ contains
       call omp_set_num_threads(1)
       call apply(this)
       this%switches = 0
+      this%started = this%current
    end subroutine tuner_init
 
    !> After a chunk of nsteps steps that took seconds: the policy's count for the next chunk.
