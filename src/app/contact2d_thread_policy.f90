@@ -14,9 +14,9 @@
 !>   counted, one thread's probe a chunk shorter: nothing to wake); a team probe whose first
 !>   counted chunk is probe_abort times slower than one thread ends at once.
 !> - Each time the team loses (a probe or the check above) the wait before the next team probe doubles, up to
-!>   probe_every_max chunks; a win resets it. On the team one thread is probed once early (the
-!>   check above needs its time), then after 4 probe_every chunks, doubled per probe that keeps
-!>   the team: the check, not these probes, is what catches a team slowed by a new load.
+!>   probe_every_max chunks; a win resets it. On the team one thread is probed once the team's
+!>   window is full (the check above needs its time), then after 4 probe_every chunks, doubled per
+!>   probe that keeps the team: the check, not these probes, catches a team slowed by a new load.
 !> - Other processes' CPUs (`others`, from /proc/stat; negative when unknown): a run starts on the
 !>   team when they were idle during the set-up, and a quiet machine brings back a team that was
 !>   left (after quiet_gap chunks, doubled per loss), so one slow stretch does not keep a run on one
@@ -35,7 +35,7 @@ module contact2d_thread_policy
    !> team, or per probe of one thread that kept it, up to probe_every_max), chunks per probe
    integer, parameter, public :: first_probe = 4, probe_every = 40, probe_every_max = 640, probe_chunks = 3
    !> chunks on one thread before a quiet machine brings the team back (doubled per loss)
-   integer, parameter, public :: quiet_gap = 8
+   integer, parameter, public :: quiet_gap = 4
    real(wp), parameter, public :: probe_abort = 1.5_wp, team_back = 1.25_wp
    !> other processes' CPUs below which the other cores count as idle
    real(wp), parameter, public :: quiet_below = 0.3_wp
@@ -153,8 +153,11 @@ contains
          if (this%chunks >= team_wait(this, others >= 0 .and. others < quiet_below)) &
             call begin_probe(this)
       else
-         ! on the team: one thread's estimate soon (team_back needs it), then rarely
-         if ((this%nrecent(one_thread) == 0 .and. this%nrecent(full_team) >= first_probe - 1) .or. &
+         ! on the team: one thread's time once the team's window is full (the check above needs
+         ! it; the team's first chunks after the set-up are slower than later ones) or sooner if
+         ! other processes took the other CPUs meanwhile, then rarely
+         if ((this%nrecent(one_thread) == 0 .and. (this%nrecent(full_team) >= window .or. &
+              (others > busy_above .and. this%nrecent(full_team) >= first_probe - 1))) .or. &
              this%chunks >= min(probe_every*2**min(this%wins + 2, 4), probe_every_max)) &
             call begin_probe(this)
       end if
