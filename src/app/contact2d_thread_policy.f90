@@ -6,9 +6,9 @@
 !>
 !> - Each count keeps its last `window` counted chunks (the first chunk after a switch wakes the
 !>   threads and is not counted); a probe compares their means. Between probes the team is left
-!>   when the median of its latest three chunks, or the mean of its window (three chunks at
-!>   least), is team_back times one thread's mean: one slow chunk among many (a time slice lost,
-!>   a rare slow region entry) does not send an idle machine's run to one thread, a team slow on
+!>   when each of its latest three chunks, or the mean of its window (three chunks at least), is
+!>   team_back times one thread's mean: one or two slow chunks among many (a time slice lost, a
+!>   rare slow region entry) do not send an idle machine's run to one thread, a team slow on
 !>   every chunk or on every third (sharing a core by time slices) is left.
 !> - The other count is probed now and then for `probe_chunks` chunks (the team's first not
 !>   counted, one thread's probe a chunk shorter: nothing to wake); a team probe whose first
@@ -77,9 +77,9 @@ contains
    end subroutine policy_start
 
    !> Seconds per step of a count: the mean of its last counted chunks (robust = .false.: the
-   !> cost, also of a team that shares a core and loses a time slice now and then), or the median
-   !> of the latest three, of two the smaller (robust = .true.: a team that became slow, not one
-   !> slow chunk); 0 when none.
+   !> cost, also of a team that shares a core and loses a time slice now and then), or the
+   !> fastest of the latest three (robust = .true.: a team slow on every chunk, not one or two
+   !> slow chunks); 0 when none.
    pure real(wp) function policy_estimate(this, k, robust) result(e)
       class(thread_policy_t), intent(in) :: this
       integer, intent(in) :: k
@@ -91,10 +91,8 @@ contains
             e = sum(r(1:n))/n
          else if (n == 1) then
             e = r(1)
-         else if (n == 2) then
-            e = min(r(1), r(2))
          else
-            e = max(min(r(1), r(2)), min(max(r(1), r(2)), r(3)))
+            e = minval(r(1:min(n, 3)))
          end if
       end associate
    end function policy_estimate
