@@ -83,9 +83,13 @@ module contact2d_threads
 
 contains
 
-   !> At the program's start: the beginning of the set-up window.
+   !> At the program's start: the beginning of the set-up window (nothing to do when the user
+   !> fixed the thread count or there is one thread).
    subroutine tuner_begin(this)
       class(thread_tuner_t), intent(inout) :: this
+      integer :: length, status
+      call get_environment_variable('OMP_NUM_THREADS', length=length, status=status)
+      if (status == 0 .or. omp_get_max_threads() < 2) return
       this%mark = cpu_sample()
       this%runnable = runnable_others()
    end subroutine tuner_begin
