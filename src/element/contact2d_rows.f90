@@ -8,11 +8,13 @@
 !> arrays of interleaved (x, y) dofs: the predictor and the sums are one plain vector loop with
 !> per-dof masses (held here: a general mesh has no row pattern to keep them shorter).
 !>
-!> Rows are stored with a fixed width of ell_width = 9 blocks (a node of a regular quad mesh has
-!> 9 neighbours, itself included; 94 % of the rows of the refined Hertz meshes): a shorter row is
-!> padded with zero blocks on its own node, the blocks of a longer row beyond the ninth go to a
-!> small CSR remainder, added after the chunk's fixed-width pass. So the product of a row is
-!> straight-line code with no loop and no data-dependent branch. Each 2 x 2 block B is stored as
+!> Rows are taken by pairs (2k - 1, 2k) and stored in a fixed layout of 12 column slots (a node
+!> of a regular quad mesh has 9 neighbours, itself included; 94 % of the rows of the refined
+!> Hertz meshes; two nodes of one element edge have 6 of them in common, and contact2d_renumber
+!> numbers edge neighbours in pairs): 6 slots shared by both rows, 3 of each row alone (rows_init).
+!> Free slots hold zero blocks on the pair's first node; blocks that find no slot go to a small
+!> CSR remainder, added after the chunk's fixed-layout pass. So the product of a pair is
+!> !> straight-line code with no loop and no data-dependent branch. Each 2 x 2 block B is stored as
 !> (b11, b22, b12, b21) and u is first copied, node by node, into ud = (ux, uy, uy, ux): the
 !> product of a block is then one 4-wide multiply-add, lanes (b11 ux, b22 uy, b12 uy, b21 ux),
 !> whose lanes 1 + 3 and 2 + 4 are the row's x and y (three accumulators of three blocks each:
@@ -36,17 +38,25 @@ module contact2d_rows
    private
    public :: rows_t
 
-   !> Blocks per row of the fixed-width part.
-   integer, parameter :: ell_width = 9
-   !> Block rows per chunk (and per partial sum): the chunk's u, v, K u, u~ and masses (2 x 256
-   !> doubles each) stay in the first-level cache from the products to the predictor loop.
+   !> Column slots of a pair of rows: 6 shared by both rows, then 3 of the first row only and 3
+   !> of the second only (pair_width = 12; each row has 9 blocks: row_width).
+   integer, parameter :: pair_width = 12, row_width = 9, n_shared = 6, n_own = 3
+   !> Block rows per chunk (and per partial sum; even, so that no pair straddles two chunks): the
+   !> chunk's u, v, K u, u~ and masses (2 x 256 doubles each) stay in the first-level cache from
+   !> the products to the predictor loop.
    integer, parameter :: chunk_rows = 256
 
-   !> The block rows of K of a general mesh (row r is node r), laid out for the sweep.
+   !> The block rows of K of a general mesh (row r is node r), laid out for the sweep by pairs of
+   !> rows (2k - 1, 2k).
    type :: rows_t
       integer :: nnode = 0
-      integer(int32), allocatable :: col(:, :)  !< offset 4 (m - 1) into ud of the column node m (ell_width, nnode)
-      real(wp), allocatable :: blk(:, :, :)     !< (b11, b22, b12, b21) of each block (4, ell_width, nnode) [N/mm]
+      integer :: npair = 0
+      !> offset 4 (m - 1) into ud of the column node m of each slot of each pair (pair_width, npair)
+      integer(int32), allocatable :: col(:, :)
+      !> (b11, b22, b12, b21) of each block of a pair (4, 2 n_shared + 2 n_own, npair): slot s <=
+      !> n_shared of the first row at 2 s - 1, of the second at 2 s; the first row's own slots
+      !> then the second's [N/mm]
+      real(wp), allocatable :: blk(:, :, :)
       integer, allocatable :: xstart(:)         !< remainder: first extra block of each row (nnode + 1)
       integer(int32), allocatable :: xcol(:)    !< remainder: offsets into ud
       integer, allocatable :: xrow(:)           !< remainder: row of each extra block
@@ -69,37 +79,126 @@ module contact2d_rows
 contains
 
    !> Set-up: the block rows of a general mesh (stiff%row_start, blk_col, blk; row r is node r)
-   !> in the layout of the sweep, blocks in the order of stiff (increasing column node), and the
-   !> per-dof masses (stiff%mass, after any mass scaling). (4 nnode must fit 32 bits: meshes
-   !> of fewer than 5e8 nodes.)
+   !> in the layout of the sweep, by pairs of rows (2k - 1, 2k): the columns of both rows in the
+   !> shared slots (increasing column node), then each row's other columns in its own slots, then
+   !> (if its own slots are full) in the free shared slots with a zero block for the other row,
+   !> then in the remainder. Empty slots hold zero blocks on the pair's first node. The node
+   !> numbering of contact2d_renumber makes most pairs two nodes of one element edge, whose 9 + 9
+   !> columns are 12 distinct nodes. Also the per-dof masses (stiff%mass, after any mass
+   !> scaling). (4 nnode must fit 32 bits: meshes of fewer than 5e8 nodes.)
    subroutine rows_init(this, stiff)
       class(rows_t), intent(out) :: this
       type(stiffness_t), intent(in) :: stiff
-      integer :: r, k, i, nx, c, nc
+      integer :: r, k, nx, c, nc, ra, rb, ka, kb, ns, na, nb, i, m
+      integer :: nal, nbl
+      integer, allocatable :: tcol(:), trow(:), tk(:), aleft(:), bleft(:)
       this%nnode = stiff%nnode
-      allocate (this%col(ell_width, this%nnode), this%blk(4, ell_width, this%nnode), this%xstart(this%nnode + 1))
-      nx = 0
+      this%npair = (this%nnode + 1)/2
+      allocate (this%col(pair_width, this%npair), this%blk(4, 2*n_shared + 2*n_own, this%npair))
+      allocate (this%xstart(this%nnode + 1), tcol(size(stiff%blk_col)), trow(size(stiff%blk_col)), &
+                tk(size(stiff%blk_col)))
+      k = 0
       do r = 1, this%nnode
-         nx = nx + max(0, stiff%row_start(r + 1) - stiff%row_start(r) - ell_width)
+         k = max(k, stiff%row_start(r + 1) - stiff%row_start(r))
       end do
-      allocate (this%xcol(nx), this%xrow(nx), this%xblk(4, nx))
+      allocate (aleft(k), bleft(k))
       nx = 0
-      do r = 1, this%nnode
-         this%xstart(r) = nx + 1
-         ! padding: zero blocks on the row's own node (adds exact zeros)
-         this%col(:, r) = 4*(r - 1)
-         this%blk(:, :, r) = 0
-         do k = stiff%row_start(r), stiff%row_start(r + 1) - 1
-            i = k - stiff%row_start(r) + 1
-            if (i <= ell_width) then
-               this%col(i, r) = 4*(stiff%blk_col(k) - 1)
-               this%blk(:, i, r) = lanes(stiff%blk(:, :, k))
+      do k = 1, this%npair
+         ra = 2*k - 1
+         rb = min(2*k, this%nnode)
+         this%col(:, k) = 4*(ra - 1)
+         this%blk(:, :, k) = 0
+         ! shared columns (both rows' lists increase), the others left over
+         ka = stiff%row_start(ra)
+         kb = stiff%row_start(rb)
+         if (rb == ra) kb = stiff%row_start(rb + 1)   ! no second row
+         ns = 0
+         nal = 0
+         nbl = 0
+         do while (ka < stiff%row_start(ra + 1) .or. kb < stiff%row_start(rb + 1))
+            if (kb >= stiff%row_start(rb + 1)) then
+               nal = nal + 1
+               aleft(nal) = ka
+               ka = ka + 1
+            else if (ka >= stiff%row_start(ra + 1)) then
+               nbl = nbl + 1
+               bleft(nbl) = kb
+               kb = kb + 1
+            else if (stiff%blk_col(ka) < stiff%blk_col(kb)) then
+               nal = nal + 1
+               aleft(nal) = ka
+               ka = ka + 1
+            else if (stiff%blk_col(kb) < stiff%blk_col(ka)) then
+               nbl = nbl + 1
+               bleft(nbl) = kb
+               kb = kb + 1
+            else if (ns < n_shared) then
+               ns = ns + 1
+               this%col(ns, k) = 4*(stiff%blk_col(ka) - 1)
+               this%blk(:, 2*ns - 1, k) = lanes(stiff%blk(:, :, ka))
+               this%blk(:, 2*ns, k) = lanes(stiff%blk(:, :, kb))
+               ka = ka + 1
+               kb = kb + 1
+            else
+               nal = nal + 1
+               aleft(nal) = ka
+               nbl = nbl + 1
+               bleft(nbl) = kb
+               ka = ka + 1
+               kb = kb + 1
+            end if
+         end do
+         ! the first row's other columns: own slots, free shared slots, remainder
+         na = 0
+         do i = 1, nal
+            m = aleft(i)
+            if (na < n_own) then
+               na = na + 1
+               this%col(n_shared + na, k) = 4*(stiff%blk_col(m) - 1)
+               this%blk(:, 2*n_shared + na, k) = lanes(stiff%blk(:, :, m))
+            else if (ns < n_shared) then
+               ns = ns + 1
+               this%col(ns, k) = 4*(stiff%blk_col(m) - 1)
+               this%blk(:, 2*ns - 1, k) = lanes(stiff%blk(:, :, m))
             else
                nx = nx + 1
-               this%xcol(nx) = 4*(stiff%blk_col(k) - 1)
-               this%xrow(nx) = r
-               this%xblk(:, nx) = lanes(stiff%blk(:, :, k))
+               tcol(nx) = 4*(stiff%blk_col(m) - 1)
+               trow(nx) = ra
+               tk(nx) = m
             end if
+         end do
+         nb = 0
+         do i = 1, nbl
+            m = bleft(i)
+            if (nb < n_own) then
+               nb = nb + 1
+               this%col(n_shared + n_own + nb, k) = 4*(stiff%blk_col(m) - 1)
+               this%blk(:, 2*n_shared + n_own + nb, k) = lanes(stiff%blk(:, :, m))
+            else if (ns < n_shared) then
+               ns = ns + 1
+               this%col(ns, k) = 4*(stiff%blk_col(m) - 1)
+               this%blk(:, 2*ns, k) = lanes(stiff%blk(:, :, m))
+            else
+               nx = nx + 1
+               tcol(nx) = 4*(stiff%blk_col(m) - 1)
+               trow(nx) = rb
+               tk(nx) = m
+            end if
+         end do
+      end do
+      ! the remainder by rows (collected in increasing row order)
+      allocate (this%xcol(nx), this%xrow(nx), this%xblk(4, nx))
+      do i = 1, nx
+         this%xcol(i) = tcol(i)
+         this%xrow(i) = trow(i)
+         this%xblk(:, i) = lanes(stiff%blk(:, :, tk(i)))
+      end do
+      i = 1
+      do r = 1, this%nnode
+         this%xstart(r) = i
+         do while (i <= nx)
+            if (trow(i) /= r) exit
+            i = i + 1
          end do
       end do
       this%xstart(this%nnode + 1) = nx + 1
@@ -178,18 +277,19 @@ contains
       integer :: ud0
       ! the first element of ud on a 64-byte boundary (where the array is now)
       ud0 = int(modulo(-transfer(c_loc(this%ud(1)), 0_c_intptr_t), 64_c_intptr_t)/8)
-      call sweep_chunks(this%nnode, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, this%xrow, this%xblk, &
+      call sweep_chunks(this%nnode, this%npair, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, &
+                        this%xrow, this%xblk, &
                         u, v, f, this%mdof, this%minvdof, ca, cb, dt, w, partial, this%ud(ud0 + 1:), &
                         this%nnode >= omp_min_nodes, full, size(this%krow), this%kstart, this%krow)
    end subroutine rows_sweep
 
    !> The chunks, shared among threads (explicit-shape arrays: unit strides known to the compiler):
    !> first every chunk's nodes into ud, then (all of ud being needed by the products) the rows.
-   subroutine sweep_chunks(nnode, nx, col, blk, xstart, xcol, xrow, xblk, u, v, f, mdof, minvdof, ca, cb, dt, &
-                           w, partial, ud, par, full, nk, kstart, krow)
-      integer, intent(in) :: nnode, nx, nk
-      integer(int32), intent(in) :: col(ell_width, nnode), xcol(nx)
-      real(wp), intent(in) :: blk(4, ell_width, nnode), xblk(4, nx)
+   subroutine sweep_chunks(nnode, npair, nx, col, blk, xstart, xcol, xrow, xblk, u, v, f, mdof, minvdof, ca, cb, &
+                           dt, w, partial, ud, par, full, nk, kstart, krow)
+      integer, intent(in) :: nnode, npair, nx, nk
+      integer(int32), intent(in) :: col(pair_width, npair), xcol(nx)
+      real(wp), intent(in) :: blk(4, 2*n_shared + 2*n_own, npair), xblk(4, nx)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx), kstart(*), krow(nk)
       real(wp), intent(in) :: u(2*nnode), mdof(2*nnode), minvdof(2*nnode), ca, cb, dt
       real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode), ud(4*nnode)
@@ -211,11 +311,11 @@ contains
          r0 = (c - 1)*chunk_rows + 1
          r1 = min(c*chunk_rows, nnode)
          if (full) then
-            call products(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, f(2*r0 - 1))
+            call products(nnode, npair, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, f(2*r0 - 1))
             call predict_full(2*(r1 - r0 + 1), u(2*r0 - 1), v(2*r0 - 1), f(2*r0 - 1), mdof(2*r0 - 1), &
                               minvdof(2*r0 - 1), ca, cb, dt, w(2*r0 - 1), partial(:, c))
          else
-            call products(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, g)
+            call products(nnode, npair, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, g)
             call predict(2*(r1 - r0 + 1), u(2*r0 - 1), v(2*r0 - 1), g, mdof(2*r0 - 1), &
                          minvdof(2*r0 - 1), ca, cb, dt, w(2*r0 - 1), partial(:, c))
             ! K u at the kept rows
@@ -245,23 +345,22 @@ contains
       end do
    end subroutine spread_u
 
-   !> K u of the rows r0 .. r1 into g (g(1:2) the row r0). A row's blocks 1, 4, 7 go into p;
-   !> 2, 5, 8 into q; 3, 6, 9 into s (ell_width = 9), each block one 4-wide multiply-add; its
-   !> outputs are the lanes (1, 2) + (3, 4) of (p + q) + s. Rows by pairs, so that the outputs of
-   !> two rows are one 4-wide add (the same bits as row by row).
-   subroutine products(nnode, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, g)
-      integer, intent(in) :: nnode, nx, r0, r1
-      integer(int32), intent(in) :: col(ell_width, nnode), xcol(nx)
-      real(wp), intent(in) :: blk(4, ell_width, nnode), xblk(4, nx)
+   !> K u of the rows r0 .. r1 into g (g(1:2) the row r0; r0 odd: whole pairs), pair by pair
+   !> (pair_sum); the x and y outputs of the two rows of a pair are one 4-wide add. Then the
+   !> remainder blocks, added in order.
+   subroutine products(nnode, npair, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, g)
+      integer, intent(in) :: nnode, npair, nx, r0, r1
+      integer(int32), intent(in) :: col(pair_width, npair), xcol(nx)
+      real(wp), intent(in) :: blk(4, 2*n_shared + 2*n_own, npair), xblk(4, nx)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx)
       real(wp), intent(in) :: ud(4*nnode)
       real(wp), intent(inout) :: g(2*r0 - 1:2*r1)
       integer :: r, k, l
       integer(i8) :: j
       real(wp) :: p(4), p2(4), a(4), b(4)
-      do r = r0, r1 - 1, 2
-         p = row_sum(col(:, r), blk(:, :, r), ud)
-         p2 = row_sum(col(:, r + 1), blk(:, :, r + 1), ud)
+      ! (one call of pair_sum, so that it is inlined)
+      do k = (r0 + 1)/2, r1/2
+         call pair_sum(col(:, k), blk(:, :, k), ud, p, p2)
          a(1) = p(1)
          a(2) = p(2)
          a(3) = p2(1)
@@ -272,15 +371,23 @@ contains
          b(4) = p2(4)
          !$omp simd simdlen(4)
          do l = 1, 4
-            g(2*r - 2 + l) = a(l) + b(l)
+            g(4*k - 4 + l) = a(l) + b(l)
          end do
       end do
-      if (mod(r1 - r0 + 1, 2) == 1) then
-         p = row_sum(col(:, r1), blk(:, :, r1), ud)
+      if (mod(r1, 2) == 1) then
+         ! the last node of an odd mesh: the first row of a pair without second row (its blocks
+         ! are the first row's: 2 i - 1 of the shared slots i, then 13-15)
+         p = 0
+         do l = 1, pair_width
+            j = int(col(l, (r1 + 1)/2), i8)
+            k = merge(2*l - 1, l + n_shared, l <= n_shared)
+            if (l > n_shared + n_own) cycle
+            p = p + blk(:, k, (r1 + 1)/2)*ud(j + 1:j + 4)
+         end do
          g(2*r1 - 1) = p(1) + p(3)
          g(2*r1) = p(2) + p(4)
       end if
-      ! the blocks of rows longer than ell_width beyond the ninth (rare), added in order
+      ! the blocks that found no slot (rare), added in order
       do k = xstart(r0), xstart(r1 + 1) - 1
          r = xrow(k)
          j = int(xcol(k), i8)
@@ -289,39 +396,93 @@ contains
       end do
    end subroutine products
 
-   !> One block row's sum: blocks 1, 4, 7 into p; 2, 5, 8 into q; 3, 6, 9 into s (each block
-   !> one 4-wide multiply-add against u spread as (ux, uy, uy, ux)), returned as (p + q) + s.
-   pure function row_sum(col, blk, ud) result(p)
-      integer(int32), intent(in) :: col(ell_width)
-      real(wp), intent(in) :: blk(4, ell_width), ud(*)
-      real(wp) :: p(4), q(4), s(4)
-      integer :: i, l
+   !> The sums of a pair of block rows: each column slot's u (spread as (ux, uy, uy, ux)) loaded
+   !> once; a shared slot two 4-wide multiply-adds (one per row), an own slot one. A row's slots
+   !> (its 9 blocks in slot order: shared 1-6, then its own 1-3) go in turn into three
+   !> accumulators, slots 1, 4, 7 into p, 2, 5, 8 into q, 3, 6, 9 into s (short chains; the
+   !> first three a product, not a multiply-add on zero: the same value); returned as
+   !> (p + q) + s for the first row (p) and the second (p2). Written out slot by slot (the block
+   !> index of the first row's slot i <= n_shared is 2 i - 1, of the second's 2 i; the own slots
+   !> are blocks 13-15 and 16-18).
+   pure subroutine pair_sum(col, blk, ud, p, p2)
+      integer(int32), intent(in) :: col(pair_width)
+      real(wp), intent(in) :: blk(4, 2*n_shared + 2*n_own), ud(*)
+      real(wp), intent(out) :: p(4), p2(4)
+      real(wp) :: q(4), s(4), q2(4), s2(4)
+      integer :: l
       integer(i8) :: j
-      p = 0
-      q = 0
-      s = 0
-      do i = 1, ell_width, 3
-         j = int(col(i), i8)
-         !$omp simd simdlen(4)
-         do l = 1, 4
-            p(l) = p(l) + blk(l, i)*ud(j + l)
-         end do
-         j = int(col(i + 1), i8)
-         !$omp simd simdlen(4)
-         do l = 1, 4
-            q(l) = q(l) + blk(l, i + 1)*ud(j + l)
-         end do
-         j = int(col(i + 2), i8)
-         !$omp simd simdlen(4)
-         do l = 1, 4
-            s(l) = s(l) + blk(l, i + 2)*ud(j + l)
-         end do
+      j = int(col(1), i8)
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         p(l) = blk(l, 1)*ud(j + l)
+         p2(l) = blk(l, 2)*ud(j + l)
+      end do
+      j = int(col(2), i8)
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         q(l) = blk(l, 3)*ud(j + l)
+         q2(l) = blk(l, 4)*ud(j + l)
+      end do
+      j = int(col(3), i8)
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         s(l) = blk(l, 5)*ud(j + l)
+         s2(l) = blk(l, 6)*ud(j + l)
+      end do
+      j = int(col(4), i8)
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         p(l) = p(l) + blk(l, 7)*ud(j + l)
+         p2(l) = p2(l) + blk(l, 8)*ud(j + l)
+      end do
+      j = int(col(5), i8)
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         q(l) = q(l) + blk(l, 9)*ud(j + l)
+         q2(l) = q2(l) + blk(l, 10)*ud(j + l)
+      end do
+      j = int(col(6), i8)
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         s(l) = s(l) + blk(l, 11)*ud(j + l)
+         s2(l) = s2(l) + blk(l, 12)*ud(j + l)
+      end do
+      j = int(col(7), i8)
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         p(l) = p(l) + blk(l, 13)*ud(j + l)
+      end do
+      j = int(col(8), i8)
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         q(l) = q(l) + blk(l, 14)*ud(j + l)
+      end do
+      j = int(col(9), i8)
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         s(l) = s(l) + blk(l, 15)*ud(j + l)
+      end do
+      j = int(col(10), i8)
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         p2(l) = p2(l) + blk(l, 16)*ud(j + l)
+      end do
+      j = int(col(11), i8)
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         q2(l) = q2(l) + blk(l, 17)*ud(j + l)
+      end do
+      j = int(col(12), i8)
+      !$omp simd simdlen(4)
+      do l = 1, 4
+         s2(l) = s2(l) + blk(l, 18)*ud(j + l)
       end do
       !$omp simd simdlen(4)
       do l = 1, 4
          p(l) = (p(l) + q(l)) + s(l)
+         p2(l) = (p2(l) + q2(l)) + s2(l)
       end do
-   end function row_sum
+   end subroutine pair_sum
 
    !> Predictor and sums on the n flat dofs of a chunk while it is in cache (as row_update of
    !> contact2d_sweep; the second sum is left zero, as by the grid rows: the caller has it from
