@@ -32,6 +32,7 @@ module contact2d_sweep
    use contact2d_kinds, only: wp
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    use contact2d_rows, only: rows_t
+   use contact2d_stepwork, only: stepwork_t
    use omp_lib, only: omp_get_max_threads, omp_get_num_procs, omp_get_thread_num
    implicit none
    private
@@ -155,7 +156,7 @@ contains
 
    !> One sweep: f = K u, v = v* = ca v - cb M^-1 f, w = u + dt v*, and the partial sums of
    !> this%partial (see the module header).
-   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w, full)
+   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w, full, post)
       class(sweep_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
@@ -165,6 +166,8 @@ contains
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       !> K u at every node and the sum u~ . K u (default); else only where kept (module header)
       logical, intent(in), optional :: full
+      !> the work per grid row done by the thread that swept the row (structured meshes only)
+      type(stepwork_t), intent(inout), optional :: post
       logical :: all_out
       all_out = .true.
       if (present(full)) all_out = full
@@ -176,7 +179,7 @@ contains
          end if
          call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, &
                          u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
-                         this%scr, this%nscr, all_out)
+                         this%scr, this%nscr, all_out, post)
       else
          call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial, all_out)
       end if
@@ -198,7 +201,7 @@ contains
    end function sweep_kept
 
    subroutine sweep_grid(nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, par, sym, qs, &
-                         scr, nscr, full)
+                         scr, nscr, full, post)
       integer, intent(in) :: nx, ny
       real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
       ! (contiguous: the rows passed on need no contiguity test or packing per row)
@@ -212,7 +215,8 @@ contains
       real(wp), intent(in) :: qs(0:7, 5)
       integer, intent(in) :: nscr
       real(wp), intent(inout) :: scr(0:, :, 0:)
-      integer :: j, rt, t, jmade, k, kn
+      type(stepwork_t), intent(inout), optional :: post
+      integer :: j, rt, t, jmade, k, kn, jfirst
       ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it).
       ! Static rows: each thread keeps the same block of rows every step, so they stay in its own
       ! cache (dynamic sharing moved rows between cores: 1.7x slower on two threads, measured
@@ -220,9 +224,13 @@ contains
       ! Each inside row forms the sum and difference rows of the next one in its own loop (scratch
       ! slots 3 - k, 4 - k); jmade is the row they were formed for (one thread's rows are
       ! consecutive: only its first inside row forms its own)
+      ! With post, each thread does the work of a row right after it (contact2d_stepwork; jfirst:
+      ! its first row), then post%after_rows; one parallel region per step
       jmade = -1
-      !$omp parallel do schedule(static) if(par) private(rt, t, k, kn) firstprivate(jmade) &
+      jfirst = -1
+      !$omp parallel if(par) private(j, rt, t, k, kn) firstprivate(jmade, jfirst) &
       !$omp num_threads(max(1, min(omp_get_max_threads(), nscr)))
+      !$omp do schedule(static)
       do j = 0, ny
          rt = row_type(j, ny)
          if (sym .and. rt == 2) then
@@ -241,8 +249,14 @@ contains
             call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rcbm(:, rclass(j)), &
                             ca, dt, w(1, 0, j), partial(1, j))
          end if
+         if (present(post)) then
+            if (jfirst < 0) jfirst = j
+            call post%after_row(j, jfirst, u, v, f, w)
+         end if
       end do
-      !$omp end parallel do
+      !$omp end do nowait
+      if (present(post)) call post%after_rows(u, f)
+      !$omp end parallel
    end subroutine sweep_grid
 
    !> The predictor and the energy sums on one grid row as flat arrays of interleaved (x, y)
