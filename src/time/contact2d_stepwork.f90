@@ -488,12 +488,30 @@ contains
       real(wp), intent(out) :: s(4)
       integer :: i, q, d, q0, d0
       real(wp) :: vo, vs, vn, md, c1, c3, c4, work, vbar, acc, f
+      d0 = run(1) - 1
+      q0 = run(2) - 1
+      if (run(3) == 1) then   ! (one dof: no vector set-up and reduction)
+         q = q0 + 1
+         d = d0 + 1
+         vo = vold(q)
+         vs = vstar(q)
+         vn = (unew(d) - u(d))/dt
+         vbar = 0.5_wp*(vn + vo)
+         acc = (vn - vo)/dt
+         f = mass(q)*(acc + alpha*vbar) + fint(d)
+         md = mass(q)*(vn - vs)
+         s(1) = md*(vn + vs)
+         s(2) = (unew(d) - wstar(q))*fint(d)
+         s(3) = md*((vn + vs) - 2*vo)
+         s(4) = pres(q)*(f*dt*vbar)
+         v(d) = vn
+         vold(q) = vn
+         return
+      end if
       c1 = 0
       c3 = 0
       c4 = 0
       work = 0
-      d0 = run(1) - 1
-      q0 = run(2) - 1
       !$omp simd private(q, d, vo, vs, vn, md, vbar, acc, f) reduction(+:c1, c3, c4, work)
       do i = 1, run(3)
          q = q0 + i
@@ -519,14 +537,16 @@ contains
    end subroutine correct_run
 
    !> K du_f = (f_int - f_mark) - K du_p at the dofs of pd in segment j, stored as -K du_f in
-   !> f_mark: the element terms -K_e du_p of the segment's elements first (slots of fe), then
-   !> per dof the same subtractions in the same order as stiffness_apply_elements.
+   !> f_mark: the element terms -K_e du_p of the segment's elements first (slots of fe; only
+   !> the outputs at the segment's nodes, each a sum over the element's dofs in order, as the
+   !> inlined matmul of stiffness_apply_elements forms it), then per dof the same subtractions
+   !> in the same order as stiffness_apply_elements.
    subroutine pres_terms(this, j, f)
       type(stepwork_t), intent(inout) :: this
       integer, intent(in) :: j
       real(wp), intent(in) :: f(*)
       real(wp) :: ue(8), sgn, x
-      integer :: s, k, a, q, d, c, n
+      integer :: s, k, a, q, d, c, n, e, i, b
       sgn = -1
       do s = this%seg_sl(j) + 1, this%seg_sl(j + 1)
          k = this%sl_el(s)
@@ -535,7 +555,17 @@ contains
             ue(2*a - 1) = this%dup(2*n - 1)
             ue(2*a) = this%dup(2*n)
          end do
-         this%fe(:, s) = sgn*matmul(this%ke(:, :, this%pel_shape(k)), ue)
+         e = this%pel_shape(k)
+         do a = 1, 4
+            if (seg_of(this%seglen, 2*this%pel_conn(a, k)) /= j) cycle
+            do i = 2*a - 1, 2*a
+               x = 0
+               do b = 1, 8
+                  x = x + this%ke(i, b, e)*ue(b)
+               end do
+               this%fe(i, s) = sgn*x
+            end do
+         end do
       end do
       do q = this%seg_pd(j) + 1, this%seg_pd(j + 1)
          d = this%pd(q)
