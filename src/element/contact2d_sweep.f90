@@ -69,6 +69,9 @@ module contact2d_sweep
       procedure :: init => sweep_init
       procedure :: step => sweep_step
       procedure :: kept => sweep_kept
+      procedure :: prepare => sweep_prepare
+      procedure :: rows_range => sweep_rows_range
+      procedure :: team => sweep_team
    end type sweep_t
 
 contains
@@ -185,6 +188,41 @@ contains
       end if
    end subroutine sweep_step
 
+   !> Structured meshes: cb M^-1 per class of row for this cb (sweep_step does it itself).
+   subroutine sweep_prepare(this, cb)
+      class(sweep_t), intent(inout) :: this
+      real(wp), intent(in) :: cb
+      ! formed once per value of cb: the same bits as cb*minv(p)*f(p)
+      if (cb /= this%cb_last) then
+         this%rcbm = cb*this%rminv
+         this%cb_last = cb
+      end if
+   end subroutine sweep_prepare
+
+   !> Threads of the sweep's parallel region (1: no region), for callers that open it.
+   integer function sweep_team(this, stiff) result(n)
+      class(sweep_t), intent(in) :: this
+      type(stiffness_t), intent(in) :: stiff
+      n = 1
+      if (stiff%nnode >= omp_min_nodes) n = max(1, min(omp_get_max_threads(), this%nscr))
+   end function sweep_team
+
+   !> Structured meshes, inside the caller's parallel region of at most team() threads: grid
+   !> rows jlo .. jhi of sweep_step on this thread, after prepare(cb), each followed by
+   !> post%after_row (post%after_rows is the caller's).
+   subroutine sweep_rows_range(this, u, v, f, ca, dt, w, full, post, jlo, jhi)
+      class(sweep_t), intent(inout) :: this
+      ! (contiguous: every thread passes the same arrays, never a packed copy)
+      real(wp), intent(in), contiguous :: u(:, :)
+      real(wp), intent(inout), contiguous :: v(:, :), f(:, :), w(:, :)
+      real(wp), intent(in) :: ca, dt
+      logical, intent(in) :: full
+      type(stepwork_t), intent(inout) :: post
+      integer, intent(in) :: jlo, jhi
+      call sweep_grid_range(jlo, jhi, this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, &
+                            this%rclass, u, v, f, ca, dt, w, this%partial, this%sym, this%qs, this%scr, full, post)
+   end subroutine sweep_rows_range
+
    !> Is K u at this node stored by every sweep, full or not (module header)? The boundary
    !> nodes (general meshes: contact2d_rows).
    pure logical function sweep_kept(this, node) result(yes)
@@ -216,7 +254,7 @@ contains
       integer, intent(in) :: nscr
       real(wp), intent(inout) :: scr(0:, :, 0:)
       type(stepwork_t), intent(inout), optional :: post
-      integer :: j, rt, t, jmade, k, kn, jfirst
+      integer :: j, jmade, jfirst
       ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it).
       ! Static rows: each thread keeps the same block of rows every step, so they stay in its own
       ! cache (dynamic sharing moved rows between cores: 1.7x slower on two threads, measured
@@ -228,10 +266,64 @@ contains
       ! its first row), then post%after_rows; one parallel region per step
       jmade = -1
       jfirst = -1
-      !$omp parallel if(par) private(j, rt, t, k, kn) firstprivate(jmade, jfirst) &
+      !$omp parallel if(par) private(j) firstprivate(jmade, jfirst) &
       !$omp num_threads(max(1, min(omp_get_max_threads(), nscr)))
       !$omp do schedule(static)
       do j = 0, ny
+         call grid_one_row(j, nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, sym, qs, scr, &
+                           full, jmade)
+         if (present(post)) then
+            if (jfirst < 0) jfirst = j
+            call post%after_row(j, jfirst, u, v, f, w)
+         end if
+      end do
+      !$omp end do nowait
+      if (present(post)) call post%after_rows(u, f)
+      !$omp end parallel
+   end subroutine sweep_grid
+
+   !> Grid rows jlo .. jhi on this thread (inside the caller's parallel region; the thread's
+   !> scratch rows by its number), each followed by post%after_row.
+   subroutine sweep_grid_range(jlo, jhi, nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, &
+                               sym, qs, scr, full, post)
+      integer, intent(in) :: jlo, jhi, nx, ny
+      real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
+      real(wp), intent(in), contiguous :: rmass(:, :), rcbm(:, :)
+      integer, intent(in) :: rclass(0:ny)
+      real(wp), intent(in) :: u(2, 0:nx, 0:ny)
+      real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
+      real(wp), intent(in) :: ca, dt
+      logical, intent(in) :: sym, full
+      real(wp), intent(inout) :: partial(4, 0:ny)
+      real(wp), intent(in) :: qs(0:7, 5)
+      real(wp), intent(inout) :: scr(0:, :, 0:)
+      type(stepwork_t), intent(inout) :: post
+      integer :: j, jmade
+      jmade = -1
+      do j = jlo, jhi
+         call grid_one_row(j, nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, sym, qs, scr, &
+                           full, jmade)
+         call post%after_row(j, jlo, u, v, f, w)
+      end do
+   end subroutine sweep_grid_range
+
+   !> Grid row j: K u, the predictor and the sums (inside rows of a symmetric stencil: also the
+   !> next row's sum and difference rows, jmade = j + 1; scratch slots of this thread).
+   subroutine grid_one_row(j, nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, sym, qs, scr, &
+                           full, jmade)
+      integer, intent(in) :: j, nx, ny
+      real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
+      real(wp), intent(in), contiguous :: rmass(:, :), rcbm(:, :)
+      integer, intent(in) :: rclass(0:ny)
+      real(wp), intent(in) :: u(2, 0:nx, 0:ny)
+      real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
+      real(wp), intent(in) :: ca, dt
+      logical, intent(in) :: sym, full
+      real(wp), intent(inout) :: partial(4, 0:ny)
+      real(wp), intent(in) :: qs(0:7, 5)
+      real(wp), intent(inout) :: scr(0:, :, 0:)
+      integer, intent(inout) :: jmade
+      integer :: rt, t, k, kn
          rt = row_type(j, ny)
          if (sym .and. rt == 2) then
             t = omp_get_thread_num()
@@ -249,15 +341,7 @@ contains
             call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rcbm(:, rclass(j)), &
                             ca, dt, w(1, 0, j), partial(1, j))
          end if
-         if (present(post)) then
-            if (jfirst < 0) jfirst = j
-            call post%after_row(j, jfirst, u, v, f, w)
-         end if
-      end do
-      !$omp end do nowait
-      if (present(post)) call post%after_rows(u, f)
-      !$omp end parallel
-   end subroutine sweep_grid
+   end subroutine grid_one_row
 
    !> The predictor and the energy sums on one grid row as flat arrays of interleaved (x, y)
    !> values, right after its K u (the row is in cache); cbm = cb M^-1 of the row.

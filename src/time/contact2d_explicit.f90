@@ -24,6 +24,7 @@ module contact2d_explicit
    use contact2d_sys, only: sys_signal_pending
    use contact2d_sweep, only: sweep_t
    use contact2d_stepwork, only: stepwork_t
+   use omp_lib, only: omp_get_thread_num, omp_get_wtime
    implicit none
    private
    public :: explicit_t, damping_none, damping_given, damping_auto
@@ -153,9 +154,9 @@ contains
       type(loading_t), intent(in) :: load
       type(contact_t), intent(inout) :: contact
       integer, intent(in) :: nsteps
-      integer :: k, p, node, comp
-      real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, workt, f, corr(4), num, den
-      logical :: full, damp
+      integer :: k, p, node, comp, nt, jlo, jhi
+      real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, workt, f, corr(4), num, den, t0, t1
+      logical :: full, damp, inside, cdone, mine
       real(wp), allocatable :: swap(:, :)
 
       ! set-up, outside the step loop: the dofs that change after the sweep
@@ -167,6 +168,12 @@ contains
       call this%rw%gather(this%v)
       dt = this%dt
       full = .true.
+      ! the contact step in the sweep's parallel region, by the thread that swept the contact
+      ! nodes' rows right after them, while the others sweep theirs (structured meshes, no loads:
+      ! the loads come before the contact step and may be anywhere)
+      inside = this%sweep%structured .and. contact%active .and. load%ntrac == 0 .and. this%rw%c_lo >= 0
+      nt = this%sweep%team(stiff)
+      call this%rw%reserve(nt)
       do k = 1, nsteps
          ! 1-2. internal force at u^n and, fused with it, the predictor without the loads:
          !      v* = (a1 v - dt M^-1 f_int)/(1 + a dt/2), u~ = u + dt v*
@@ -189,7 +196,27 @@ contains
          ! alpha from (u^n, K u^n), used from the next step on; v^(n+1/2) and the correction
          ! sums at the listed dofs that neither the loads nor the contact step change
          call this%rw%prepare(this%cnext, dt, this%alpha, damp, this%u)
-         if (this%sweep%structured) then
+         cdone = .false.
+         if (inside) then
+            call this%sweep%prepare(dt*a2inv)
+            call this%rw%plan(nt)
+            !$omp parallel if(nt > 1) num_threads(nt) private(jlo, jhi, mine, t0, t1)
+            call this%rw%split(omp_get_thread_num(), jlo, jhi, mine)
+            t0 = omp_get_wtime()
+            call this%sweep%rows_range(this%u, this%v, this%fint, a1*a2inv, dt, this%unew, full, this%rw, jlo, jhi)
+            if (mine) then
+               ! the prescribed values on the contact dofs, the contact step, the contact dofs'
+               ! velocities and sums (as below)
+               t1 = omp_get_wtime()
+               call this%rw%set_late_prescribed(this%unew)
+               call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc)
+               call this%rw%correct_late(this%u, this%unew, this%fint, this%v)
+               call this%rw%balance(t1 - t0, jhi - jlo + 1, omp_get_wtime() - t1)
+               cdone = .true.
+            end if
+            call this%rw%after_rows(this%u, this%fint)
+            !$omp end parallel
+         else if (this%sweep%structured) then
             call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full, this%rw)
          else
             call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full)
@@ -199,7 +226,7 @@ contains
             call this%rw%estimate(num, den)
             if (num > 0 .and. den > 0) this%alpha_next = min(2*sqrt(num/den), 2/this%dt)
          end if
-         ! loads at t_n (sparse); the prescribed values on the loaded and contact dofs
+         ! loads at t_n (sparse)
          do p = 1, load%ntrac
             this%fext(load%tcomp(p), load%tnode(p)) = 0
          end do
@@ -210,9 +237,11 @@ contains
             this%fext(comp, node) = this%fext(comp, node) + f
             this%unew(comp, node) = this%unew(comp, node) + c*this%minv(node)*f
          end do
-         call this%rw%set_late_prescribed(this%unew)
-         ! 3. contact
-         if (contact%active) call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc)
+         ! 3. the prescribed values on the loaded and contact dofs, contact (if not done above)
+         if (.not. cdone) then
+            call this%rw%set_late_prescribed(this%unew)
+            if (contact%active) call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc)
+         end if
          ! 4a. external work of the reactions (inertial and damping parts included) and loads,
          !     with the centred increment (u^(n+1) - u^(n-1))/2 = dt vbar
          !     (the reactions in the correction below, the loads here, before it changes v)
@@ -228,7 +257,7 @@ contains
          !     (u^(n+1) - u^n)/dt and the sums of the sweep are corrected (run by run, in a
          !     fixed order); the runs with a loaded or contact dof here, the others were done
          !     with the sweep
-         call this%rw%correct_late(this%u, this%unew, this%fint, this%v)
+         if (.not. cdone) call this%rw%correct_late(this%u, this%unew, this%fint, this%v)
          call this%rw%sums(corr, work)
          work = work + workt
          this%external_work = this%external_work + work
@@ -310,6 +339,11 @@ contains
       call this%rw%set_list(reshape(mark, [2*this%nnode]), reshape(pres, [2*this%nnode]), &
                             reshape(late, [2*this%nnode]), this%mass, &
                             2*(load%pnode(1:load%npres) - 1) + load%pcomp(1:load%npres), load%pcurve(1:load%npres))
+      if (contact%active) then
+         call this%rw%set_contact(contact%node(1:contact%nc))
+      else
+         call this%rw%set_contact([integer ::])
+      end if
    end subroutine special_dofs
 
 

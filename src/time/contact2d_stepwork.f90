@@ -63,6 +63,15 @@ module contact2d_stepwork
       integer, allocatable :: blk_first(:), seg_blk(:)   !< first segment of a block; blocks ending in a segment (0:nseg)
       logical, allocatable :: rdone(:)
       real(wp), allocatable :: rpart(:, :) !< (2, nblock): du_f . K du_f, du_f . M du_f
+      ! the contact step in the sweep's parallel region (split, balance)
+      integer :: c_lo = -1, c_hi = -1     !< segments of the first and last contact node (-1: none)
+      !> running estimate of the contact step's time (with its late work) in segments' times:
+      !> the thread that does it gets that many fewer segments, shared among all threads
+      real(wp) :: c_rows = 0
+      !> the split of this step (plan): thread t sweeps segments bnd(t) .. bnd(t + 1) - 1; cthread
+      !> does the contact step (-1: none, the caller does it after the region)
+      integer, allocatable :: bnd(:)
+      integer :: cthread = -1
    contains
       procedure :: init => stepwork_init
       procedure :: set_damping => stepwork_set_damping
@@ -77,6 +86,11 @@ module contact2d_stepwork
       procedure :: correct_late => stepwork_correct_late
       procedure :: sums => stepwork_sums
       procedure :: estimate => stepwork_estimate
+      procedure :: set_contact => stepwork_set_contact
+      procedure :: reserve => stepwork_reserve
+      procedure :: plan => stepwork_plan
+      procedure :: split => stepwork_split
+      procedure :: balance => stepwork_balance
    end type stepwork_t
 
 contains
@@ -97,6 +111,116 @@ contains
       integer, intent(in) :: seglen, d
       j = (d - 1)/seglen
    end function seg_of
+
+   !> The contact nodes' segments (nodes: the contact nodes; none: no contact step).
+   subroutine stepwork_set_contact(this, nodes)
+      class(stepwork_t), intent(inout) :: this
+      integer, intent(in) :: nodes(:)
+      if (size(nodes) == 0) then
+         this%c_lo = -1
+         this%c_hi = -1
+      else
+         this%c_lo = seg_of(this%seglen, 2*minval(nodes))
+         this%c_hi = seg_of(this%seglen, 2*maxval(nodes))
+      end if
+   end subroutine stepwork_set_contact
+
+   !> The segments jlo .. jhi of thread t of nt (consecutive, in thread order) and whether this
+   !> thread does the contact step (mine: all contact segments are its own). Equal shares, but
+   !> the thread with the contact segments, when it is the first or the last, gets
+   !> c_rows (nt - 1)/nt segments fewer. The bits do not depend on the split.
+   subroutine split_of(this, t, nt, jlo, jhi, mine)
+      class(stepwork_t), intent(in) :: this
+      integer, intent(in) :: t, nt
+      integer, intent(out) :: jlo, jhi
+      logical, intent(out) :: mine
+      integer :: b1, s, n
+      n = this%nseg
+      jlo = (t*n)/nt
+      jhi = ((t + 1)*n)/nt - 1
+      mine = .false.
+      if (this%c_lo < 0) return
+      if (nt == 1) then
+         mine = .true.
+         return
+      end if
+      s = nint(this%c_rows*(nt - 1)/nt)
+      if (this%c_hi < n/nt) then
+         ! the first thread's: it ends s earlier (but after the contact segments)
+         b1 = max(n/nt - s, this%c_hi + 1)
+         if (t == 0) then
+            jlo = 0
+            jhi = b1 - 1
+            mine = .true.
+         else
+            jlo = b1 + ((t - 1)*(n - b1))/(nt - 1)
+            jhi = b1 + (t*(n - b1))/(nt - 1) - 1
+         end if
+      else if (this%c_lo >= ((nt - 1)*n)/nt) then
+         ! the last thread's: it starts s later (but before the contact segments)
+         b1 = min(((nt - 1)*n)/nt + s, this%c_lo)
+         if (t == nt - 1) then
+            jlo = b1
+            jhi = n - 1
+            mine = .true.
+         else
+            jlo = (t*b1)/(nt - 1)
+            jhi = ((t + 1)*b1)/(nt - 1) - 1
+         end if
+      else
+         mine = jlo <= this%c_lo .and. this%c_hi <= jhi
+      end if
+   end subroutine split_of
+
+   !> Room for the split of up to nt threads (outside the step loop).
+   subroutine stepwork_reserve(this, nt)
+      class(stepwork_t), intent(inout) :: this
+      integer, intent(in) :: nt
+      if (allocated(this%bnd)) then
+         if (size(this%bnd) >= nt + 1) return
+         deallocate (this%bnd)
+      end if
+      allocate (this%bnd(0:nt))
+   end subroutine stepwork_reserve
+
+   !> The split of this step among nt threads (split_of), before the parallel region: every
+   !> thread then reads the same one, whatever balance changes during the step.
+   subroutine stepwork_plan(this, nt)
+      class(stepwork_t), intent(inout) :: this
+      integer, intent(in) :: nt
+      integer :: t, jlo, jhi
+      logical :: mine
+      this%cthread = -1
+      do t = 0, nt - 1
+         call split_of(this, t, nt, jlo, jhi, mine)
+         this%bnd(t) = jlo
+         if (t == nt - 1) this%bnd(nt) = jhi + 1
+         if (mine) this%cthread = t
+      end do
+   end subroutine stepwork_plan
+
+   !> Thread t's segments jlo .. jhi of the plan, and whether it does the contact step.
+   subroutine stepwork_split(this, t, jlo, jhi, mine)
+      class(stepwork_t), intent(in) :: this
+      integer, intent(in) :: t
+      integer, intent(out) :: jlo, jhi
+      logical, intent(out) :: mine
+      jlo = this%bnd(t)
+      jhi = this%bnd(t + 1) - 1
+      mine = t == this%cthread
+   end subroutine stepwork_split
+
+   !> After the contact step on the sweep's thread: its segments took trows seconds for nrows
+   !> segments, the contact step tc; the estimate c_rows moves 1/16 of the way to tc/(trows/nrows).
+   subroutine stepwork_balance(this, trows, nrows, tc)
+      class(stepwork_t), intent(inout) :: this
+      real(wp), intent(in) :: trows, tc
+      integer, intent(in) :: nrows
+      real(wp) :: est
+      if (nrows <= 0 .or. trows <= 0) return
+      est = min(tc/(trows/nrows), real(this%nseg, wp)/4)
+      this%c_rows = this%c_rows + (est - this%c_rows)/16
+   end subroutine stepwork_balance
 
    !> The damping estimate's data: the elements (conn, shape_of, ke) that touch a prescribed dof
    !> (free(2, nnode) = 0), their dofs, the mask and the blocks.
