@@ -62,6 +62,9 @@ module contact2d_sweep
       !> cb rminv for the cb of cb_last (formed again when cb changes: the damping) [s/t]
       real(wp), allocatable :: rcbm(:, :)
       real(wp) :: cb_last = -1
+      !> rcbm is formed for cb_last by rows_range, row by row (prepare with by_rows and one class
+      !> per row: each thread forms its rows' own columns)
+      logical :: cbm_rows = .false.
       integer, allocatable :: rclass(:)           !< class of each grid row (0:ny)
       type(rows_t) :: rows                        !< block rows and masses (general meshes)
       real(wp), allocatable :: partial(:, :)      !< sums of the last sweep (4, parts)
@@ -175,11 +178,8 @@ contains
       all_out = .true.
       if (present(full)) all_out = full
       if (this%structured) then
-         ! cb M^-1 per class of row, formed once per value of cb: the same bits as cb*minv(p)*f(p)
-         if (cb /= this%cb_last) then
-            this%rcbm = cb*this%rminv
-            this%cb_last = cb
-         end if
+         ! cb M^-1 per class of row, formed once per value of cb
+         call this%prepare(cb, .false.)
          call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, &
                          u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
                          this%scr, this%nscr, all_out, post)
@@ -189,15 +189,36 @@ contains
    end subroutine sweep_step
 
    !> Structured meshes: cb M^-1 per class of row for this cb (sweep_step does it itself).
-   subroutine sweep_prepare(this, cb)
+   subroutine sweep_prepare(this, cb, by_rows)
       class(sweep_t), intent(inout) :: this
       real(wp), intent(in) :: cb
+      !> rows_range follows: with one class per row, each row's column is formed there
+      logical, intent(in) :: by_rows
+      integer :: c
       ! formed once per value of cb: the same bits as cb*minv(p)*f(p)
-      if (cb /= this%cb_last) then
-         this%rcbm = cb*this%rminv
-         this%cb_last = cb
+      this%cbm_rows = .false.
+      if (cb == this%cb_last) return
+      this%cb_last = cb
+      if (by_rows .and. size(this%rcbm, 2) == this%ny + 1) then
+         this%cbm_rows = .true.
+         return
       end if
+      do c = 1, size(this%rcbm, 2)
+         call scale_column(size(this%rcbm, 1), cb, this%rminv(:, c), this%rcbm(:, c))
+      end do
    end subroutine sweep_prepare
+
+   !> b = c a (a vector loop: the array assignment went element by element).
+   subroutine scale_column(n, c, a, b)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: c, a(n)
+      real(wp), intent(out) :: b(n)
+      integer :: p
+      !$omp simd
+      do p = 1, n
+         b(p) = c*a(p)
+      end do
+   end subroutine scale_column
 
    !> Threads of the sweep's parallel region (1: no region), for callers that open it.
    integer function sweep_team(this, stiff) result(n)
@@ -208,7 +229,7 @@ contains
    end function sweep_team
 
    !> Structured meshes, inside the caller's parallel region of at most team() threads: grid
-   !> rows jlo .. jhi of sweep_step on this thread, after prepare(cb), each followed by
+   !> rows jlo .. jhi of sweep_step on this thread, after prepare(cb, .true.), each followed by
    !> post%after_row (post%after_rows is the caller's).
    subroutine sweep_rows_range(this, u, v, f, ca, dt, w, full, post, jlo, jhi)
       class(sweep_t), intent(inout) :: this
@@ -219,6 +240,12 @@ contains
       logical, intent(in) :: full
       type(stepwork_t), intent(inout) :: post
       integer, intent(in) :: jlo, jhi
+      integer :: j
+      if (this%cbm_rows) then
+         do j = jlo, jhi
+            call scale_column(size(this%rcbm, 1), this%cb_last, this%rminv(:, this%rclass(j)), this%rcbm(:, this%rclass(j)))
+         end do
+      end if
       call sweep_grid_range(jlo, jhi, this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, &
                             this%rclass, u, v, f, ca, dt, w, this%partial, this%sym, this%qs, this%scr, full, post)
    end subroutine sweep_rows_range

@@ -198,7 +198,7 @@ contains
          call this%rw%prepare(this%cnext, dt, this%alpha, damp, this%u)
          cdone = .false.
          if (inside) then
-            call this%sweep%prepare(dt*a2inv)
+            call this%sweep%prepare(dt*a2inv, .true.)
             call this%rw%plan(nt)
             !$omp parallel if(nt > 1) num_threads(nt) private(jlo, jhi, mine, t0, t1)
             call this%rw%split(omp_get_thread_num(), jlo, jhi, mine)
