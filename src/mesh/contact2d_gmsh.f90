@@ -16,7 +16,7 @@ module contact2d_gmsh
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str
    use contact2d_mesh, only: mesh_t
-   use contact2d_renumber, only: rcm_order
+   use contact2d_renumber, only: rcm_order, group_order
    implicit none
    private
    public :: gmsh_read
@@ -477,8 +477,10 @@ contains
       call mesh%init_arrays(x, conn)
       mesh%elem_id = elem_id
       call mesh%set_groups(names, gstart, seg(:, 1:nseg))
-      ! nodes in reverse Cuthill-McKee order for the sweep's locality (outputs keep the file's)
+      ! nodes in reverse Cuthill-McKee order for the sweep's locality, an element's nodes together
+      ! for its groups of rows (outputs keep the file's)
       call rcm_order(mesh%conn, mesh%nnode, perm)
+      call group_order(mesh%conn, mesh%nnode, perm)
       call mesh%renumber(perm)
       stat = 0
       errmsg = ''
