@@ -52,6 +52,7 @@ contains
       character(len=:), allocatable :: static_msg
 
       call system_clock(clock0, rate)
+      call tuner%begin()  ! the set-up window of the thread tuner (contact2d_threads)
       static_dist = huge(1.0_wp)
       call cli_parse(cli, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg//' (usage: contact2d --help)')
@@ -298,7 +299,7 @@ contains
             call summary(model, deck, solver, cli%output, converged, status, residual, wall, timings, dt_initial, fallback_step)
       if (tuner%active) write (output_unit, '(a)') ' threads             auto: '//str(tuner%nmax)//' on '// &
          fixed(100*real(tuner%steps(2), wp)/max(1.0_wp, real(sum(tuner%steps), wp)), 1)//' % of the steps, 1 on the rest ('// &
-         str(tuner%switches)//' switches; set OMP_NUM_THREADS to fix the count)'
+         'started on '//str(tuner%started)//', '//str(tuner%switches)//' switches; set OMP_NUM_THREADS to fix the count)'
       if (deck%solver%compare_static .and. static_dist < huge(1.0_wp)) then
          write (output_unit, '(a)') ' static distance     '//sci(static_dist)//' (energy norm ||u - u_static||_K / '// &
             '||u_static||_K'//trim(merge('); static NOT converged', ')                      ', .not. static_converged))
