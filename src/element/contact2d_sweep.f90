@@ -32,7 +32,6 @@ module contact2d_sweep
    use contact2d_kinds, only: wp
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    use contact2d_rows, only: rows_t
-   use contact2d_stepwork, only: stepwork_t
    use omp_lib, only: omp_get_max_threads, omp_get_num_procs, omp_get_thread_num
    implicit none
    private
@@ -62,9 +61,6 @@ module contact2d_sweep
       !> cb rminv for the cb of cb_last (formed again when cb changes: the damping) [s/t]
       real(wp), allocatable :: rcbm(:, :)
       real(wp) :: cb_last = -1
-      !> rcbm is formed for cb_last by rows_range, row by row (prepare with by_rows and one class
-      !> per row: each thread forms its rows' own columns)
-      logical :: cbm_rows = .false.
       integer, allocatable :: rclass(:)           !< class of each grid row (0:ny)
       type(rows_t) :: rows                        !< block rows and masses (general meshes)
       real(wp), allocatable :: partial(:, :)      !< sums of the last sweep (4, parts)
@@ -72,9 +68,6 @@ module contact2d_sweep
       procedure :: init => sweep_init
       procedure :: step => sweep_step
       procedure :: kept => sweep_kept
-      procedure :: prepare => sweep_prepare
-      procedure :: rows_range => sweep_rows_range
-      procedure :: team => sweep_team
    end type sweep_t
 
 contains
@@ -162,7 +155,7 @@ contains
 
    !> One sweep: f = K u, v = v* = ca v - cb M^-1 f, w = u + dt v*, and the partial sums of
    !> this%partial (see the module header).
-   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w, full, post)
+   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w, full)
       class(sweep_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
@@ -172,83 +165,22 @@ contains
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       !> K u at every node and the sum u~ . K u (default); else only where kept (module header)
       logical, intent(in), optional :: full
-      !> the work per grid row done by the thread that swept the row (structured meshes only)
-      type(stepwork_t), intent(inout), optional :: post
       logical :: all_out
       all_out = .true.
       if (present(full)) all_out = full
       if (this%structured) then
-         ! cb M^-1 per class of row, formed once per value of cb
-         call this%prepare(cb, .false.)
+         ! cb M^-1 per class of row, formed once per value of cb: the same bits as cb*minv(p)*f(p)
+         if (cb /= this%cb_last) then
+            this%rcbm = cb*this%rminv
+            this%cb_last = cb
+         end if
          call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, &
                          u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
-                         this%scr, this%nscr, all_out, post)
+                         this%scr, this%nscr, all_out)
       else
          call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial, all_out)
       end if
    end subroutine sweep_step
-
-   !> Structured meshes: cb M^-1 per class of row for this cb (sweep_step does it itself).
-   subroutine sweep_prepare(this, cb, by_rows)
-      class(sweep_t), intent(inout) :: this
-      real(wp), intent(in) :: cb
-      !> rows_range follows: with one class per row, each row's column is formed there
-      logical, intent(in) :: by_rows
-      integer :: c
-      ! formed once per value of cb: the same bits as cb*minv(p)*f(p)
-      this%cbm_rows = .false.
-      if (cb == this%cb_last) return
-      this%cb_last = cb
-      if (by_rows .and. size(this%rcbm, 2) == this%ny + 1) then
-         this%cbm_rows = .true.
-         return
-      end if
-      do c = 1, size(this%rcbm, 2)
-         call scale_column(size(this%rcbm, 1), cb, this%rminv(:, c), this%rcbm(:, c))
-      end do
-   end subroutine sweep_prepare
-
-   !> b = c a (a vector loop: the array assignment went element by element).
-   subroutine scale_column(n, c, a, b)
-      integer, intent(in) :: n
-      real(wp), intent(in) :: c, a(n)
-      real(wp), intent(out) :: b(n)
-      integer :: p
-      !$omp simd
-      do p = 1, n
-         b(p) = c*a(p)
-      end do
-   end subroutine scale_column
-
-   !> Threads of the sweep's parallel region (1: no region), for callers that open it.
-   integer function sweep_team(this, stiff) result(n)
-      class(sweep_t), intent(in) :: this
-      type(stiffness_t), intent(in) :: stiff
-      n = 1
-      if (stiff%nnode >= omp_min_nodes) n = max(1, min(omp_get_max_threads(), this%nscr))
-   end function sweep_team
-
-   !> Structured meshes, inside the caller's parallel region of at most team() threads: grid
-   !> rows jlo .. jhi of sweep_step on this thread, after prepare(cb, .true.), each followed by
-   !> post%after_row (post%after_rows is the caller's).
-   subroutine sweep_rows_range(this, u, v, f, ca, dt, w, full, post, jlo, jhi)
-      class(sweep_t), intent(inout) :: this
-      ! (contiguous: every thread passes the same arrays, never a packed copy)
-      real(wp), intent(in), contiguous :: u(:, :)
-      real(wp), intent(inout), contiguous :: v(:, :), f(:, :), w(:, :)
-      real(wp), intent(in) :: ca, dt
-      logical, intent(in) :: full
-      type(stepwork_t), intent(inout) :: post
-      integer, intent(in) :: jlo, jhi
-      integer :: j
-      if (this%cbm_rows) then
-         do j = jlo, jhi
-            call scale_column(size(this%rcbm, 1), this%cb_last, this%rminv(:, this%rclass(j)), this%rcbm(:, this%rclass(j)))
-         end do
-      end if
-      call sweep_grid_range(jlo, jhi, this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, &
-                            this%rclass, u, v, f, ca, dt, w, this%partial, this%sym, this%qs, this%scr, full, post)
-   end subroutine sweep_rows_range
 
    !> Is K u at this node stored by every sweep, full or not (module header)? The boundary
    !> nodes (general meshes: contact2d_rows).
@@ -266,7 +198,7 @@ contains
    end function sweep_kept
 
    subroutine sweep_grid(nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, par, sym, qs, &
-                         scr, nscr, full, post)
+                         scr, nscr, full)
       integer, intent(in) :: nx, ny
       real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
       ! (contiguous: the rows passed on need no contiguity test or packing per row)
@@ -280,8 +212,7 @@ contains
       real(wp), intent(in) :: qs(0:7, 5)
       integer, intent(in) :: nscr
       real(wp), intent(inout) :: scr(0:, :, 0:)
-      type(stepwork_t), intent(inout), optional :: post
-      integer :: j, jmade, jfirst
+      integer :: j, rt, t, jmade, k, kn
       ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it).
       ! Static rows: each thread keeps the same block of rows every step, so they stay in its own
       ! cache (dynamic sharing moved rows between cores: 1.7x slower on two threads, measured
@@ -289,68 +220,10 @@ contains
       ! Each inside row forms the sum and difference rows of the next one in its own loop (scratch
       ! slots 3 - k, 4 - k); jmade is the row they were formed for (one thread's rows are
       ! consecutive: only its first inside row forms its own)
-      ! With post, each thread does the work of a row right after it (contact2d_stepwork; jfirst:
-      ! its first row), then post%after_rows; one parallel region per step
       jmade = -1
-      jfirst = -1
-      !$omp parallel if(par) private(j) firstprivate(jmade, jfirst) &
+      !$omp parallel do schedule(static) if(par) private(rt, t, k, kn) firstprivate(jmade) &
       !$omp num_threads(max(1, min(omp_get_max_threads(), nscr)))
-      !$omp do schedule(static)
       do j = 0, ny
-         call grid_one_row(j, nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, sym, qs, scr, &
-                           full, jmade)
-         if (present(post)) then
-            if (jfirst < 0) jfirst = j
-            call post%after_row(j, jfirst, u, v, f, w)
-         end if
-      end do
-      !$omp end do nowait
-      if (present(post)) call post%after_rows(u, f)
-      !$omp end parallel
-   end subroutine sweep_grid
-
-   !> Grid rows jlo .. jhi on this thread (inside the caller's parallel region; the thread's
-   !> scratch rows by its number), each followed by post%after_row.
-   subroutine sweep_grid_range(jlo, jhi, nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, &
-                               sym, qs, scr, full, post)
-      integer, intent(in) :: jlo, jhi, nx, ny
-      real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
-      real(wp), intent(in), contiguous :: rmass(:, :), rcbm(:, :)
-      integer, intent(in) :: rclass(0:ny)
-      real(wp), intent(in) :: u(2, 0:nx, 0:ny)
-      real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
-      real(wp), intent(in) :: ca, dt
-      logical, intent(in) :: sym, full
-      real(wp), intent(inout) :: partial(4, 0:ny)
-      real(wp), intent(in) :: qs(0:7, 5)
-      real(wp), intent(inout) :: scr(0:, :, 0:)
-      type(stepwork_t), intent(inout) :: post
-      integer :: j, jmade
-      jmade = -1
-      do j = jlo, jhi
-         call grid_one_row(j, nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, sym, qs, scr, &
-                           full, jmade)
-         call post%after_row(j, jlo, u, v, f, w)
-      end do
-   end subroutine sweep_grid_range
-
-   !> Grid row j: K u, the predictor and the sums (inside rows of a symmetric stencil: also the
-   !> next row's sum and difference rows, jmade = j + 1; scratch slots of this thread).
-   subroutine grid_one_row(j, nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, sym, qs, scr, &
-                           full, jmade)
-      integer, intent(in) :: j, nx, ny
-      real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
-      real(wp), intent(in), contiguous :: rmass(:, :), rcbm(:, :)
-      integer, intent(in) :: rclass(0:ny)
-      real(wp), intent(in) :: u(2, 0:nx, 0:ny)
-      real(wp), intent(inout) :: v(2, 0:nx, 0:ny), f(2, 0:nx, 0:ny), w(2, 0:nx, 0:ny)
-      real(wp), intent(in) :: ca, dt
-      logical, intent(in) :: sym, full
-      real(wp), intent(inout) :: partial(4, 0:ny)
-      real(wp), intent(in) :: qs(0:7, 5)
-      real(wp), intent(inout) :: scr(0:, :, 0:)
-      integer, intent(inout) :: jmade
-      integer :: rt, t, k, kn
          rt = row_type(j, ny)
          if (sym .and. rt == 2) then
             t = omp_get_thread_num()
@@ -368,7 +241,9 @@ contains
             call row_update(2*(nx + 1), u(1, 0, j), v(1, 0, j), f(1, 0, j), rmass(:, rclass(j)), rcbm(:, rclass(j)), &
                             ca, dt, w(1, 0, j), partial(1, j))
          end if
-   end subroutine grid_one_row
+      end do
+      !$omp end parallel do
+   end subroutine sweep_grid
 
    !> The predictor and the energy sums on one grid row as flat arrays of interleaved (x, y)
    !> values, right after its K u (the row is in cache); cbm = cb M^-1 of the row.

@@ -9,10 +9,7 @@
 !>   4. v^(n+1/2) = (u^(n+1) - u^n)/dt, energies of SPEC section 6.
 !> Steps 1-2 and the energy sums are one sweep over memory (contact2d_sweep), which writes v*
 !> as the new velocity; step 4 then only corrects the dofs that step 2's loads, the prescribed
-!> values or step 3 moved (docs/performance.md, issue 13). On structured meshes the work local
-!> to a grid row (the listed dofs, the prescribed values, the damping estimate, the correction
-!> of the dofs that neither the loads nor the contact step change) is done in the sweep's
-!> parallel region by the thread that swept the row (contact2d_stepwork).
+!> values or step 3 moved (docs/performance.md, issue 13).
 !> The step does no I/O and no allocation.
 module contact2d_explicit
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -23,8 +20,6 @@ module contact2d_explicit
    use contact2d_contact, only: contact_t
    use contact2d_sys, only: sys_signal_pending
    use contact2d_sweep, only: sweep_t
-   use contact2d_stepwork, only: stepwork_t
-   use omp_lib, only: omp_get_thread_num, omp_get_wtime
    implicit none
    private
    public :: explicit_t, damping_none, damping_given, damping_auto
@@ -57,12 +52,16 @@ module contact2d_explicit
       real(wp), allocatable :: unew(:, :)  !< u~, then u^(n+1) [mm]
       type(sweep_t) :: sweep               !< K u, predictor and energy sums in one pass
       !> dofs whose u~ changes after the sweep (loads, prescribed, contact nodes), as indices of
-      !> the flattened (2 nnode) arrays, in dof order; set up by the first advance. Their v*, u~
-      !> and v^(n-1/2), the prescribed values and the damping estimate's state are in rw.
-      integer, allocatable :: sdof(:)
-      type(stepwork_t) :: rw               !< the work per grid row (contact2d_stepwork)
+      !> the flattened (2 nnode) arrays, and their v^(n-1/2), v* and u~ of the current step; set
+      !> up by the first advance, in dof order; as runs of consecutive dofs, s_run(:, r) = (first
+      !> dof, its place in the list, length): the loops over them are vector copies and sums.
+      integer, allocatable :: sdof(:), s_run(:, :)
+      real(wp), allocatable :: s_pres(:)   !< 1 at the prescribed dofs of the list, else 0
+      integer, allocatable :: p_dof(:)     !< the dof of each prescribed value (flattened), load order
       !> per dof (flattened): 0 on the listed dofs, 1 elsewhere (explicit_residual)
       integer(int8), allocatable :: s_other(:)
+      real(wp), allocatable :: s_vold(:), s_vstar(:), s_wstar(:)
+      real(wp), allocatable :: s_mass(:)   !< the mass of each listed dof [t]
       integer :: s_ncontact = -1           !< contact nodes when sdof was built
       !> a listed dof where the sweep does not always store K u: every sweep is then full
       logical :: s_interior = .false.
@@ -73,8 +72,17 @@ module contact2d_explicit
       real(wp), allocatable :: mdof(:)     !< lumped mass per dof (2 nnode), for the Rayleigh sums [t]
       real(wp), allocatable :: minv(:)     !< 1 / lumped mass [1/t]
       integer :: nblock = 0                !< blocks of block_size nodes
+      real(wp), allocatable :: partial(:, :)  !< per-block sums (4, nblock)
       real(wp), allocatable :: cval(:)     !< curve values at t_n
       real(wp), allocatable :: cnext(:)    !< curve values at t_(n+1)
+      ! automatic damping: u and K u at the last estimate
+      real(wp), allocatable :: u_mark(:, :), f_mark(:, :), work(:, :)
+      integer, allocatable :: pres_elements(:)   !< elements touching a prescribed dof
+      !> the dofs of pres_elements (flattened), where K du_p is not zero
+      integer, allocatable :: pres_dofs(:)
+      !> per dof (flattened): 1 free, 0 prescribed, -1 free among pres_dofs (rayleigh_blocks)
+      real(wp), allocatable :: rmask(:)
+      real(wp), allocatable :: kdu(:, :)   !< K du_f at pres_dofs (update_damping) [N]
       ! energies (SPEC section 6) [mJ = N mm]
       real(wp) :: kinetic = 0              !< 1/2 v^(n+1/2) M v^(n+1/2)
       real(wp) :: strain = 0               !< 1/2 u^(n+1) K u^n (current when advance returns)
@@ -102,6 +110,7 @@ module contact2d_explicit
    contains
       procedure :: init => explicit_init
       procedure :: advance => explicit_advance
+      procedure :: update_damping => explicit_update_damping
       procedure :: residual => explicit_residual
       procedure :: balance_error => explicit_balance_error
       procedure :: set_dt => explicit_set_dt
@@ -116,7 +125,8 @@ contains
       type(loading_t), intent(in) :: load
       real(wp), intent(in) :: dt, alpha
       integer, intent(in) :: damping, damping_interval
-      integer :: nnode
+      integer :: nnode, e, a, n
+      logical, allocatable :: touches(:), mark(:, :)
 
       nnode = size(stiff%mass)
       this%nnode = nnode
@@ -126,23 +136,39 @@ contains
       this%alpha_next = this%alpha
       this%damping_interval = damping_interval
       allocate (this%u(2, nnode), this%v(2, nnode), this%unew(2, nnode), this%fint(2, nnode), &
-                this%fext(2, nnode), this%fc(2, nnode))
+                this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode))
       this%u = 0; this%v = 0; this%unew = 0; this%fint = 0; this%fext = 0; this%fc = 0
       call this%sweep%init(stiff)
       this%mass = stiff%mass
       this%minv = 1/stiff%mass
       this%mdof = reshape(spread(stiff%mass, 1, 2), [2*nnode])
       this%nblock = (nnode + block_size - 1)/block_size
+      allocate (this%partial(4, this%nblock))
       allocate (this%cval(load%ncurve), this%cnext(load%ncurve))
       call load%curve_values(0.0_wp, this%cnext)
-      ! segments of the per-row work: the grid rows of a structured mesh, else all dofs
-      if (stiff%structured) then
-         call this%rw%init(nnode, 2*(stiff%nx + 1), load%ncurve)
-      else
-         call this%rw%init(nnode, 2*nnode, load%ncurve)
+      if (damping == damping_auto) then
+         allocate (this%u_mark(2, nnode), this%f_mark(2, nnode))
+         this%u_mark = 0
+         this%f_mark = 0
+         this%work = 0
+         allocate (touches(size(stiff%conn, 2)))
+         do e = 1, size(touches)
+            touches(e) = any(load%free(:, stiff%conn(:, e)) == 0)
+         end do
+         this%pres_elements = pack([(e, e=1, size(touches))], touches)
+         ! the dofs where K du_p is not zero, and the mask of rayleigh_blocks
+         allocate (mark(2, nnode))
+         mark = .false.
+         do e = 1, size(this%pres_elements)
+            do a = 1, size(stiff%conn, 1)
+               mark(:, stiff%conn(a, this%pres_elements(e))) = .true.
+            end do
+         end do
+         this%pres_dofs = pack([(n, n=1, 2*nnode)], reshape(mark, [2*nnode]))
+         this%rmask = reshape(merge(-load%free, load%free, mark .and. load%free > 0), [2*nnode])
+         allocate (this%kdu(2, nnode))
+         this%kdu = 0
       end if
-      if (damping == damping_auto) &
-         call this%rw%set_damping(stiff%conn, stiff%shape_of, stiff%ke, load%free, this%mdof)
    end subroutine explicit_init
 
    !> Run up to nsteps steps; stops early (blown_up = .true.) if the energy runs away, after a
@@ -154,9 +180,9 @@ contains
       type(loading_t), intent(in) :: load
       type(contact_t), intent(inout) :: contact
       integer, intent(in) :: nsteps
-      integer :: k, p, node, comp, nt, jlo, jhi
-      real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, workt, f, corr(4), num, den, t0, t1
-      logical :: full, damp, inside, cdone, mine
+      integer :: k, p, node, comp
+      real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, workt, f, corr(4)
+      logical :: full
       real(wp), allocatable :: swap(:, :)
 
       ! set-up, outside the step loop: the dofs that change after the sweep
@@ -164,16 +190,10 @@ contains
          call special_dofs(this, load, contact)
       if (this%vsum_stale) this%vsum = mass_sum(2*this%nnode, this%mdof, this%v)
       this%vsum_stale = .false.
-      ! v^(n-1/2) at the listed dofs; the correction keeps it up to date from here on
-      call this%rw%gather(this%v)
+      ! v^(n-1/2) at the listed dofs; special_correct keeps it up to date from here on
+      call special_gather(this%s_run, this%v, this%s_vold)
       dt = this%dt
       full = .true.
-      ! the contact step in the sweep's parallel region, by the thread that swept the contact
-      ! nodes' rows right after them, while the others sweep theirs (structured meshes, no loads:
-      ! the loads come before the contact step and may be anywhere)
-      inside = this%sweep%structured .and. contact%active .and. load%ntrac == 0 .and. this%rw%c_lo >= 0
-      nt = this%sweep%team(stiff)
-      call this%rw%reserve(nt)
       do k = 1, nsteps
          ! 1-2. internal force at u^n and, fused with it, the predictor without the loads:
          !      v* = (a1 v - dt M^-1 f_int)/(1 + a dt/2), u~ = u + dt v*
@@ -184,49 +204,20 @@ contains
          ! one sweep: K u^n, v* (into v), u~ and the energy sums of v*; K u at every node and
          ! the strain energy only on the steps that read them (the last of this call, for the
          ! driver's residual and output; the damping estimate's)
-         damp = .false.
-         if (this%damping == damping_auto) damp = mod(this%step, int(this%damping_interval, i8)) == 0
-         full = k == nsteps .or. this%s_interior .or. damp
-         ! curve values at t_n (the loads) and t_(n+1) (the prescribed values)
+         full = k == nsteps .or. this%s_interior
+         if (this%damping == damping_auto) &
+            full = full .or. mod(this%step, int(this%damping_interval, i8)) == 0
+         call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full)
+         ! the dofs changed below: keep v* and u~, give back v^(n-1/2) (loads, reactions and
+         ! the contact step use it)
+         call special_keep(this%s_run, this%v, this%unew, this%s_vold, this%s_vstar, this%s_wstar)
+         ! automatic damping: a new alpha from (u^n, K u^n), used from the next step on
+         if (this%damping == damping_auto) then
+            if (mod(this%step, int(this%damping_interval, i8)) == 0) call this%update_damping(stiff, load)
+         end if
+         ! loads at t_n (sparse), prescribed values at t_(n+1)
          this%cval = this%cnext
          call load%curve_values(this%time + dt, this%cnext)
-         ! the work per grid row, done by the sweep (structured meshes) or right after it: keep
-         ! v* and u~ at the listed dofs and give v^(n-1/2) back (loads, reactions and the contact
-         ! step use it); prescribed values at t_(n+1); automatic damping: the sums of a new
-         ! alpha from (u^n, K u^n), used from the next step on; v^(n+1/2) and the correction
-         ! sums at the listed dofs that neither the loads nor the contact step change
-         call this%rw%prepare(this%cnext, dt, this%alpha, damp, this%u)
-         cdone = .false.
-         if (inside) then
-            call this%sweep%prepare(dt*a2inv, .true.)
-            call this%rw%plan(nt)
-            !$omp parallel if(nt > 1) num_threads(nt) private(jlo, jhi, mine, t0, t1)
-            call this%rw%split(omp_get_thread_num(), jlo, jhi, mine)
-            t0 = omp_get_wtime()
-            call this%sweep%rows_range(this%u, this%v, this%fint, a1*a2inv, dt, this%unew, full, this%rw, jlo, jhi)
-            if (mine) then
-               ! the prescribed values on the contact dofs, the contact step, the contact dofs'
-               ! velocities and sums (as below)
-               t1 = omp_get_wtime()
-               call this%rw%set_late_prescribed(this%unew)
-               call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc)
-               call this%rw%correct_late(this%u, this%unew, this%fint, this%v)
-               call this%rw%balance(t1 - t0, jhi - jlo + 1, omp_get_wtime() - t1)
-               cdone = .true.
-            end if
-            call this%rw%after_rows(this%u, this%fint)
-            !$omp end parallel
-         else if (this%sweep%structured) then
-            call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full, this%rw)
-         else
-            call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full)
-            call this%rw%all_rows(this%u, this%v, this%fint, this%unew)
-         end if
-         if (damp) then
-            call this%rw%estimate(num, den)
-            if (num > 0 .and. den > 0) this%alpha_next = min(2*sqrt(num/den), 2/this%dt)
-         end if
-         ! loads at t_n (sparse)
          do p = 1, load%ntrac
             this%fext(load%tcomp(p), load%tnode(p)) = 0
          end do
@@ -237,14 +228,12 @@ contains
             this%fext(comp, node) = this%fext(comp, node) + f
             this%unew(comp, node) = this%unew(comp, node) + c*this%minv(node)*f
          end do
-         ! 3. the prescribed values on the loaded and contact dofs, contact (if not done above)
-         if (.not. cdone) then
-            call this%rw%set_late_prescribed(this%unew)
-            if (contact%active) call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc)
-         end if
+         call set_prescribed(load%npres, this%p_dof, load%pcurve, this%cnext, this%unew)
+         ! 3. contact
+         if (contact%active) call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc)
          ! 4a. external work of the reactions (inertial and damping parts included) and loads,
          !     with the centred increment (u^(n+1) - u^(n-1))/2 = dt vbar
-         !     (the reactions in the correction below, the loads here, before it changes v)
+         !     (the reactions in special_correct below, the loads here, before it changes v)
          workt = 0
          do p = 1, load%ntrac
             node = load%tnode(p)
@@ -254,11 +243,9 @@ contains
             workt = workt + this%cval(load%tcurve(p))*load%tweight(p)*dt*vbar
          end do
          ! 4b. velocities and energies: v^(n+1/2) = v* but at the changed dofs, where it is
-         !     (u^(n+1) - u^n)/dt and the sums of the sweep are corrected (run by run, in a
-         !     fixed order); the runs with a loaded or contact dof here, the others were done
-         !     with the sweep
-         if (.not. cdone) call this%rw%correct_late(this%u, this%unew, this%fint, this%v)
-         call this%rw%sums(corr, work)
+         !     (u^(n+1) - u^n)/dt and the sums of the sweep are corrected (in a fixed order)
+         call special_correct(this%s_run, this%s_pres, this%s_mass, this%u, this%unew, this%fint, &
+                              dt, this%alpha, this%s_vold, this%s_vstar, this%s_wstar, this%v, corr, work)
          work = work + workt
          this%external_work = this%external_work + work
          this%work_in = this%work_in + abs(work)
@@ -289,20 +276,17 @@ contains
    end subroutine explicit_advance
 
    !> The dofs whose u~ is changed after the sweep: loaded, prescribed and contact-node dofs,
-   !> each once, in dof order; the loaded and contact-node ones are changed after the sweep's
-   !> parallel region ("late", contact2d_stepwork).
+   !> each once, in dof order.
    subroutine special_dofs(this, load, contact)
       type(explicit_t), intent(inout) :: this
       type(loading_t), intent(in) :: load
       type(contact_t), intent(in) :: contact
-      logical, allocatable :: mark(:, :), pres(:, :), late(:, :)
-      integer :: p, i, n, comp, node
-      allocate (mark(2, this%nnode), late(2, this%nnode))
+      logical, allocatable :: mark(:, :), pres(:, :)
+      integer :: p, i, n, r, comp, node
+      allocate (mark(2, this%nnode))
       mark = .false.
-      late = .false.
       do p = 1, load%ntrac
          mark(load%tcomp(p), load%tnode(p)) = .true.
-         late(load%tcomp(p), load%tnode(p)) = .true.
       end do
       do p = 1, load%npres
          mark(load%pcomp(p), load%pnode(p)) = .true.
@@ -311,7 +295,6 @@ contains
       if (contact%active) then
          do i = 1, contact%nc
             mark(:, contact%node(i)) = .true.
-            late(:, contact%node(i)) = .true.
          end do
          this%s_ncontact = contact%nc
       end if
@@ -320,31 +303,148 @@ contains
       do node = 1, this%nnode
          if (any(mark(:, node))) this%s_interior = this%s_interior .or. .not. this%sweep%kept(node)
       end do
-      if (allocated(this%sdof)) deallocate (this%sdof, this%s_other)
-      allocate (this%sdof(n))
+      if (allocated(this%sdof)) deallocate (this%sdof, this%s_vold, this%s_vstar, this%s_wstar, this%s_mass, &
+                                            this%s_pres, this%s_run, this%s_other)
+      allocate (this%sdof(n), this%s_vold(n), this%s_vstar(n), this%s_wstar(n), this%s_mass(n), this%s_pres(n))
       allocate (pres(2, this%nnode))
       pres = .false.
       do p = 1, load%npres
          pres(load%pcomp(p), load%pnode(p)) = .true.
       end do
+      this%p_dof = 2*(load%pnode(1:load%npres) - 1) + load%pcomp(1:load%npres)
       this%s_other = reshape(merge(0_int8, 1_int8, mark), [2*this%nnode])
+      ! the list in dof order, then its runs
       n = 0
       do node = 1, this%nnode
          do comp = 1, 2
             if (.not. mark(comp, node)) cycle
             n = n + 1
             this%sdof(n) = 2*(node - 1) + comp
+            this%s_mass(n) = this%mass(node)
+            this%s_pres(n) = merge(1, 0, pres(comp, node))
          end do
       end do
-      call this%rw%set_list(reshape(mark, [2*this%nnode]), reshape(pres, [2*this%nnode]), &
-                            reshape(late, [2*this%nnode]), this%mass, &
-                            2*(load%pnode(1:load%npres) - 1) + load%pcomp(1:load%npres), load%pcurve(1:load%npres))
-      if (contact%active) then
-         call this%rw%set_contact(contact%node(1:contact%nc))
-      else
-         call this%rw%set_contact([integer ::])
-      end if
+      r = 0
+      do i = 1, n
+         if (i == 1) then
+            r = r + 1
+         else if (this%sdof(i) /= this%sdof(i - 1) + 1) then
+            r = r + 1
+         end if
+      end do
+      allocate (this%s_run(3, r))
+      r = 0
+      do i = 1, n
+         if (i > 1) then
+            if (this%sdof(i) == this%sdof(i - 1) + 1) then
+               this%s_run(3, r) = this%s_run(3, r) + 1
+               cycle
+            end if
+         end if
+         r = r + 1
+         this%s_run(:, r) = [this%sdof(i), i, 1]
+      end do
    end subroutine special_dofs
+
+   !> The prescribed values at t_(n+1): w(dof(p)) = c(curve(p)), in load order (flattened w).
+   subroutine set_prescribed(n, dof, curve, c, w)
+      integer, intent(in) :: n, dof(n), curve(n)
+      real(wp), intent(in) :: c(:)
+      real(wp), intent(inout) :: w(*)
+      integer :: p
+      do p = 1, n
+         w(dof(p)) = c(curve(p))
+      end do
+   end subroutine set_prescribed
+
+   !> vold = v at the listed dofs (flattened arrays).
+   subroutine special_gather(run, v, vold)
+      integer, intent(in) :: run(:, :)
+      real(wp), intent(in) :: v(*)
+      real(wp), intent(inout) :: vold(*)
+      integer :: r, d, q, l, i
+      do r = 1, size(run, 2)
+         d = run(1, r) - 1
+         q = run(2, r) - 1
+         l = run(3, r)
+         ! (a simd loop, not an array copy: that became a call of memcpy per run)
+         !$omp simd
+         do i = 1, l
+            vold(q + i) = v(d + i)
+         end do
+      end do
+   end subroutine special_gather
+
+   !> At the listed dofs, right after the sweep: keep v* and u~, give v^(n-1/2) back to v.
+   subroutine special_keep(run, v, w, vold, vstar, wstar)
+      integer, intent(in) :: run(:, :)
+      real(wp), intent(inout) :: v(*)
+      real(wp), intent(in) :: w(*), vold(*)
+      real(wp), intent(inout) :: vstar(*), wstar(*)
+      integer :: r, d, q, l, i
+      do r = 1, size(run, 2)
+         d = run(1, r) - 1
+         q = run(2, r) - 1
+         l = run(3, r)
+         if (l == 1) then   ! (the loop below is three calls of memcpy)
+            vstar(q + 1) = v(d + 1)
+            wstar(q + 1) = w(d + 1)
+            v(d + 1) = vold(q + 1)
+            cycle
+         end if
+         !$omp simd
+         do i = 1, l
+            vstar(q + i) = v(d + i)
+            wstar(q + i) = w(d + i)
+            v(d + i) = vold(q + i)
+         end do
+      end do
+   end subroutine special_keep
+
+   !> At the listed dofs, after the contact step: v^(n+1/2) = (u^(n+1) - u^n)/dt, and the changes
+   !> of the sweep's sums (m v^2, -, u . K u, m dv^2) from v* and u~ to these values, run by run
+   !> (vector sums in a fixed order; a^2 - b^2 = (a - b)(a + b); the damping sum is not needed:
+   !> add_energies). At the prescribed dofs (pres = 1) also the work of the reactions, inertial
+   !> and damping parts included, on the centred increment dt vbar = (u^(n+1) - u^(n-1))/2.
+   !> vold becomes v^(n+1/2), the next step's v^(n-1/2).
+   subroutine special_correct(run, pres, mass, u, unew, fint, dt, alpha, vold, vstar, wstar, v, corr, work)
+      integer, intent(in) :: run(:, :)
+      real(wp), intent(in) :: pres(*), mass(*), u(*), unew(*), fint(*), dt, alpha, vstar(*), wstar(*)
+      real(wp), intent(inout) :: v(*), vold(*)
+      real(wp), intent(out) :: corr(4), work
+      integer :: r, i, q, d, q0, d0
+      real(wp) :: vo, vs, vn, md, c1, c3, c4, vbar, acc, f
+      c1 = 0
+      c3 = 0
+      c4 = 0
+      work = 0
+      do r = 1, size(run, 2)
+         d0 = run(1, r) - 1
+         q0 = run(2, r) - 1
+         !$omp simd private(q, d, vo, vs, vn, md, vbar, acc, f) reduction(+:c1, c3, c4, work)
+         do i = 1, run(3, r)
+            q = q0 + i
+            d = d0 + i
+            vo = vold(q)
+            vs = vstar(q)
+            vn = (unew(d) - u(d))/dt
+            vbar = 0.5_wp*(vn + vo)
+            acc = (vn - vo)/dt
+            f = mass(q)*(acc + alpha*vbar) + fint(d)
+            work = work + pres(q)*(f*dt*vbar)
+            md = mass(q)*(vn - vs)
+            c1 = c1 + md*(vn + vs)
+            c3 = c3 + (unew(d) - wstar(q))*fint(d)
+            c4 = c4 + md*((vn + vs) - 2*vo)
+            v(d) = vn
+            vold(q) = vn   ! v^(n-1/2) of the next step
+         end do
+      end do
+      corr(1) = c1
+      corr(2) = 0
+      corr(3) = c3
+      corr(4) = c4
+   end subroutine special_correct
 
 
    !> Growing-mode guard, every step: a mode above the stability limit changes sign every step
@@ -433,6 +533,95 @@ contains
          t = t + mdof(i)*v(i)*v(i)
       end do
    end function mass_sum
+
+   !> Automatic damping (dynamic relaxation, SPEC section 5): alpha = 2 omega_1, with omega_1^2
+   !> the Rayleigh quotient of the free part du_f of the displacement increment since the last
+   !> estimate, du_f^T K du_f / du_f^T M du_f. Called right after f_int = K u^n, so (u, f_int)
+   !> and the stored mark are consistent pairs: K du_f = (f_int - f_mark) - K du_p, and K du_p
+   !> only involves the elements that touch a prescribed dof. K du_f is formed apart on their
+   !> dofs only (kdu) and put in f_mark as -K du_f; one pass over all dofs then takes
+   !> f_int - f_mark elsewhere, and f_mark itself there (rayleigh_blocks).
+   subroutine explicit_update_damping(this, stiff, load)
+      class(explicit_t), intent(inout) :: this
+      type(stiffness_t), intent(in) :: stiff
+      type(loading_t), intent(in) :: load
+      real(wp) :: num, den
+      integer :: p, b
+      ! K du = f_int - f_mark on the dofs of the elements that touch a prescribed dof; then
+      ! subtract K du_p there, du_p being zero but on the prescribed dofs
+      call pres_difference(size(this%pres_dofs), this%pres_dofs, this%fint, this%f_mark, this%kdu)
+      do p = 1, load%npres
+         this%work(load%pcomp(p), load%pnode(p)) = this%u(load%pcomp(p), load%pnode(p)) &
+                                                   - this%u_mark(load%pcomp(p), load%pnode(p))
+      end do
+      call stiff%apply_elements(this%pres_elements, this%work, this%kdu, subtract=.true.)
+      do p = 1, load%npres
+         this%work(load%pcomp(p), load%pnode(p)) = 0
+      end do
+      call pres_negate(size(this%pres_dofs), this%pres_dofs, this%kdu, this%f_mark)
+      ! du_f^T K du_f and du_f^T M du_f by blocks; the marks move to (u, f_int)
+      call rayleigh_blocks(2*this%nnode, this%nblock, this%u, this%fint, this%rmask, this%mdof, &
+                           this%u_mark, this%f_mark, this%partial)
+      num = 0
+      den = 0
+      do b = 1, this%nblock
+         num = num + this%partial(1, b)
+         den = den + this%partial(2, b)
+      end do
+      if (num > 0 .and. den > 0) this%alpha_next = min(2*sqrt(num/den), 2/this%dt)
+   end subroutine explicit_update_damping
+
+   !> d = a - f at the listed dofs (flattened arrays).
+   subroutine pres_difference(n, dof, a, f, d)
+      integer, intent(in) :: n, dof(n)
+      real(wp), intent(in) :: a(*), f(*)
+      real(wp), intent(inout) :: d(*)
+      integer :: q
+      do q = 1, n
+         d(dof(q)) = a(dof(q)) - f(dof(q))
+      end do
+   end subroutine pres_difference
+
+   !> f = -d at the listed dofs (flattened arrays).
+   subroutine pres_negate(n, dof, d, f)
+      integer, intent(in) :: n, dof(n)
+      real(wp), intent(in) :: d(*)
+      real(wp), intent(inout) :: f(*)
+      integer :: q
+      do q = 1, n
+         f(dof(q)) = -d(dof(q))
+      end do
+   end subroutine pres_negate
+
+   !> Per block: sum of du_f kdu and of m du_f^2 with du_f = (u - u_mark) |mask| and
+   !> kdu = max(mask, 0) f_int - f_mark: f_int - f_mark where mask = 1 (exact: 1 f_int = f_int),
+   !> -f_mark where mask = -1 (exact: 0 f_int - f_mark, also if contracted to an FMA), du_f = 0
+   !> where mask = 0; then u_mark = u, f_mark = f_int. Block sums are added in order by the
+   !> caller (thread-independent bits).
+   subroutine rayleigh_blocks(ndof, nblock, u, fint, mask, mdof, u_mark, f_mark, partial)
+      integer, intent(in) :: ndof, nblock
+      real(wp), intent(in) :: u(ndof), fint(ndof), mask(ndof), mdof(ndof)
+      real(wp), intent(inout) :: u_mark(ndof), f_mark(ndof)
+      real(wp), intent(inout) :: partial(4, nblock)
+      integer :: b, i
+      real(wp) :: du, num, den
+      !$omp parallel do schedule(static) private(i, du, num, den) if(ndof >= 2*omp_min_nodes)
+      do b = 1, nblock
+         num = 0
+         den = 0
+         !$omp simd private(du) reduction(+:num, den)
+         do i = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
+            du = (u(i) - u_mark(i))*abs(mask(i))
+            num = num + du*(max(mask(i), 0.0_wp)*fint(i) - f_mark(i))
+            den = den + mdof(i)*du*du
+            u_mark(i) = u(i)
+            f_mark(i) = fint(i)
+         end do
+         partial(1, b) = num
+         partial(2, b) = den
+      end do
+      !$omp end parallel do
+   end subroutine rayleigh_blocks
 
    !> Out-of-balance force on the free dofs at t_n (contact forces included), relative to the
    !> largest of the reactions, the loads and the contact forces (SPEC section 5), or to `floor`
