@@ -144,10 +144,18 @@ contains
       allocate (is_row(this%nnode))
       is_row = .false.
       is_row(rows) = .true.
-      ! at most 16 blocks per row (four elements of four nodes) before merging duplicates
-      allocate (cols(16), blocks(2, 2, 16))
+      ! at most four blocks per element of the row's node before merging duplicates (a node of
+      ! valence 8 has 17 distinct columns: no fixed bound)
+      k = 0
+      nb = 0
+      do r = 1, size(rows)
+         ncol = 4*(adj_start(rows(r) + 1) - adj_start(rows(r)))
+         k = max(k, ncol)
+         nb = nb + ncol
+      end do
+      allocate (cols(k), blocks(2, 2, k))
       allocate (this%row_node(size(rows)), this%row_start(size(rows) + 1), &
-                this%blk_col(16*size(rows)), this%blk(2, 2, 16*size(rows)))
+                this%blk_col(nb), this%blk(2, 2, nb))
       nb = 0
       do r = 1, size(rows)
          n = rows(r)

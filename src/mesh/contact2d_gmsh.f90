@@ -390,6 +390,17 @@ contains
       conn = reshape(int(enodes), [4, nel])
       call gmshFree(p_etags)
       call gmshFree(p_enodes)
+      ! a quadrilateral with a node twice (collapsed to a triangle) is refused: the element rows,
+      ! the node grouping and the Q1 element all take four distinct nodes
+      do i = 1, nel
+         do j = 2, 4
+            if (any(conn(1:j - 1, i) == conn(j, i))) then
+               errmsg = "mesh:file = '"//path//"': element "//str(elem_id(i))//' has node '//str(conn(j, i))// &
+                        ' twice (a degenerate quadrilateral); contact2d takes 4-node quadrilaterals of four distinct nodes'
+               return
+            end if
+         end do
+      end do
 
       ! all nodes; keep those of the quadrilaterals, numbered in increasing tag
       call gmshModelMeshGetNodes(p_tags, n_tags, p_coord, n_coord, p_pc, n_pc, -1_c_int, -1_c_int, &

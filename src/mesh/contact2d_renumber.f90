@@ -116,12 +116,16 @@ contains
    !> of its elements whose nodes are all free, the one whose nodes lie in the fewest such
    !> elements (then the first); the group takes the place of its first node. The nodes left
    !> over are matched along element edges the same way (the neighbour with the fewest free
-   !> neighbours left, then the earliest), two such pairs (or two left-over nodes) making a
-   !> group; a last incomplete group goes at the end. An element's nodes start at its first
-   !> edge on the mesh's boundary, if any, so that both nodes of that edge are side by side (the
-   !> prescribed and contact dofs of contact2d_explicit then form fewer, longer runs). Every
-   !> node keeps its place to within a few places of the grouping, so the locality of the order
-   !> stays.
+   !> neighbours left, then the earliest); a node with no free neighbour waits for the next such
+   !> node and the two make a pair; two consecutive pairs make a group; a last incomplete group
+   !> goes at the end. An element's nodes start at its first edge on the mesh's boundary, if
+   !> any, so that both nodes of that edge are side by side (the prescribed and contact dofs of
+   !> contact2d_explicit then form fewer, longer runs). A grouped element's nodes stay within
+   !> about the order's bandwidth of their places; a waiting pair or node does not: it joins the
+   !> next left-over one wherever that is (on the Hertz cylinder the bandwidth grows from 120 to
+   !> 494 at level 1 and from 240 to 1740 at level 2, and such groups' blocks that share no
+   !> column slot go to contact2d_rows' remainder: docs/performance.md "GENERAL5"). Elements
+   !> have four distinct nodes (contact2d_gmsh refuses others).
    subroutine group_order(conn, nnode, perm)
       integer, intent(in) :: conn(:, :)   !< (4, nel) element nodes
       integer, intent(in) :: nnode

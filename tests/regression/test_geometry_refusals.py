@@ -3,7 +3,8 @@
 Cases on the small deck tests/regression/geometry/base.nml (a 3 x 3 quad square from Gmsh):
 triangles (a .geo without recombination), a boundary name the mesh lacks (the message lists the
 names it has), a Gamma_c group that is not one chain (bottom and top), an inverted (self-
-intersecting) element in a .msh file (element 12 of geometry/inverted.msh, named by that id, not its index 2), a circle obstacle without its
+intersecting) element in a .msh file (element 12 of geometry/inverted.msh, named by that id, not its index 2), a
+quadrilateral with a node twice (geometry/degenerate.msh), a circle obstacle without its
 centre, a mesh file that does not exist. Each runs in an empty directory with -o out.h5: exit 1,
 exactly one stderr line 'contact2d: error: ...' matching the case's pattern, no out.h5, no out.xmf.
 """
@@ -24,6 +25,9 @@ CASES = [
     ("inverted_element", ["--set", "mesh:file='inverted.msh'", "--set", "dirichlet#1:boundary='bottom'",
                           "--set", "dirichlet#2:boundary='bottom'"],
      r"element 12 has a non-positive Jacobian"),
+    ("degenerate_element", ["--set", "mesh:file='degenerate.msh'", "--set", "dirichlet#1:boundary='bottom'",
+                            "--set", "dirichlet#2:boundary='bottom'"],
+     r"element 12 has node 6 twice \(a degenerate quadrilateral\)"),
     ("circle_without_centre", ["--set", "contact:obstacle='circle'"],
      r"obstacle = 'circle' needs obstacle_center"),
     ("missing_mesh_file", ["--set", "mesh:file='no_such_mesh.msh'"],
