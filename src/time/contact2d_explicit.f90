@@ -26,6 +26,8 @@ module contact2d_explicit
 
    integer, parameter :: damping_none = 0, damping_given = 1, damping_auto = 2
 
+   !> Runs of the listed dofs shorter than this go through one loop over their places (s_short).
+   integer, parameter :: long_run = 4
    !> Kinetic energy above this multiple of the absolute work put in means the run blew up.
    real(wp), parameter :: blowup_ratio = 1.0e3_wp
    !> Nodes per block of the node loops (fixed, so sums do not depend on the thread count).
@@ -53,9 +55,11 @@ module contact2d_explicit
       type(sweep_t) :: sweep               !< K u, predictor and energy sums in one pass
       !> dofs whose u~ changes after the sweep (loads, prescribed, contact nodes), as indices of
       !> the flattened (2 nnode) arrays, and their v^(n-1/2), v* and u~ of the current step; set
-      !> up by the first advance, in dof order; as runs of consecutive dofs, s_run(:, r) = (first
-      !> dof, its place in the list, length): the loops over them are vector copies and sums.
-      integer, allocatable :: sdof(:), s_run(:, :)
+      !> up by the first advance, in dof order; its runs of at least long_run consecutive dofs as
+      !> s_run(:, r) = (first dof, its place in the list, length): the loops over them are vector
+      !> copies and sums; the places of the other dofs (short runs, as on the boundaries of Gmsh
+      !> meshes) in s_short: one loop over all of them, no vector set-up per run.
+      integer, allocatable :: sdof(:), s_run(:, :), s_short(:)
       real(wp), allocatable :: s_pres(:)   !< 1 at the prescribed dofs of the list, else 0
       integer, allocatable :: p_dof(:)     !< the dof of each prescribed value (flattened), load order
       !> per dof (flattened): 0 on the listed dofs, 1 elsewhere (explicit_residual)
@@ -191,7 +195,7 @@ contains
       if (this%vsum_stale) this%vsum = mass_sum(2*this%nnode, this%mdof, this%v)
       this%vsum_stale = .false.
       ! v^(n-1/2) at the listed dofs; special_correct keeps it up to date from here on
-      call special_gather(this%s_run, this%v, this%s_vold)
+      call special_gather(this%s_run, this%s_short, this%sdof, this%v, this%s_vold)
       dt = this%dt
       full = .true.
       do k = 1, nsteps
@@ -210,7 +214,7 @@ contains
          call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full)
          ! the dofs changed below: keep v* and u~, give back v^(n-1/2) (loads, reactions and
          ! the contact step use it)
-         call special_keep(this%s_run, this%v, this%unew, this%s_vold, this%s_vstar, this%s_wstar)
+         call special_keep(this%s_run, this%s_short, this%sdof, this%v, this%unew, this%s_vold, this%s_vstar, this%s_wstar)
          ! automatic damping: a new alpha from (u^n, K u^n), used from the next step on
          if (this%damping == damping_auto) then
             if (mod(this%step, int(this%damping_interval, i8)) == 0) call this%update_damping(stiff, load)
@@ -244,7 +248,7 @@ contains
          end do
          ! 4b. velocities and energies: v^(n+1/2) = v* but at the changed dofs, where it is
          !     (u^(n+1) - u^n)/dt and the sums of the sweep are corrected (in a fixed order)
-         call special_correct(this%s_run, this%s_pres, this%s_mass, this%u, this%unew, this%fint, &
+         call special_correct(this%s_run, this%s_short, this%sdof, this%s_pres, this%s_mass, this%u, this%unew, this%fint, &
                               dt, this%alpha, this%s_vold, this%s_vstar, this%s_wstar, this%v, corr, work)
          work = work + workt
          this%external_work = this%external_work + work
@@ -282,7 +286,8 @@ contains
       type(loading_t), intent(in) :: load
       type(contact_t), intent(in) :: contact
       logical, allocatable :: mark(:, :), pres(:, :)
-      integer :: p, i, n, r, comp, node
+      integer, allocatable :: runs(:, :)
+      integer :: p, i, j, n, r, comp, node
       allocate (mark(2, this%nnode))
       mark = .false.
       do p = 1, load%ntrac
@@ -304,7 +309,7 @@ contains
          if (any(mark(:, node))) this%s_interior = this%s_interior .or. .not. this%sweep%kept(node)
       end do
       if (allocated(this%sdof)) deallocate (this%sdof, this%s_vold, this%s_vstar, this%s_wstar, this%s_mass, &
-                                            this%s_pres, this%s_run, this%s_other)
+                                            this%s_pres, this%s_run, this%s_short, this%s_other)
       allocate (this%sdof(n), this%s_vold(n), this%s_vstar(n), this%s_wstar(n), this%s_mass(n), this%s_pres(n))
       allocate (pres(2, this%nnode))
       pres = .false.
@@ -332,17 +337,23 @@ contains
             r = r + 1
          end if
       end do
-      allocate (this%s_run(3, r))
+      allocate (runs(3, r))
       r = 0
       do i = 1, n
          if (i > 1) then
             if (this%sdof(i) == this%sdof(i - 1) + 1) then
-               this%s_run(3, r) = this%s_run(3, r) + 1
+               runs(3, r) = runs(3, r) + 1
                cycle
             end if
          end if
          r = r + 1
-         this%s_run(:, r) = [this%sdof(i), i, 1]
+         runs(:, r) = [this%sdof(i), i, 1]
+      end do
+      ! long runs kept as runs, the places of the others listed
+      this%s_run = runs(:, pack([(i, i=1, r)], runs(3, 1:r) >= long_run))
+      allocate (this%s_short(0))
+      do i = 1, r
+         if (runs(3, i) < long_run) this%s_short = [this%s_short, [(runs(2, i) + j, j=0, runs(3, i) - 1)]]
       end do
    end subroutine special_dofs
 
@@ -358,8 +369,8 @@ contains
    end subroutine set_prescribed
 
    !> vold = v at the listed dofs (flattened arrays).
-   subroutine special_gather(run, v, vold)
-      integer, intent(in) :: run(:, :)
+   subroutine special_gather(run, short, dof, v, vold)
+      integer, intent(in) :: run(:, :), short(:), dof(:)
       real(wp), intent(in) :: v(*)
       real(wp), intent(inout) :: vold(*)
       integer :: r, d, q, l, i
@@ -373,11 +384,15 @@ contains
             vold(q + i) = v(d + i)
          end do
       end do
+      do i = 1, size(short)
+         q = short(i)
+         vold(q) = v(dof(q))
+      end do
    end subroutine special_gather
 
    !> At the listed dofs, right after the sweep: keep v* and u~, give v^(n-1/2) back to v.
-   subroutine special_keep(run, v, w, vold, vstar, wstar)
-      integer, intent(in) :: run(:, :)
+   subroutine special_keep(run, short, dof, v, w, vold, vstar, wstar)
+      integer, intent(in) :: run(:, :), short(:), dof(:)
       real(wp), intent(inout) :: v(*)
       real(wp), intent(in) :: w(*), vold(*)
       real(wp), intent(inout) :: vstar(*), wstar(*)
@@ -399,6 +414,13 @@ contains
             v(d + i) = vold(q + i)
          end do
       end do
+      do i = 1, size(short)
+         q = short(i)
+         d = dof(q)
+         vstar(q) = v(d)
+         wstar(q) = w(d)
+         v(d) = vold(q)
+      end do
    end subroutine special_keep
 
    !> At the listed dofs, after the contact step: v^(n+1/2) = (u^(n+1) - u^n)/dt, and the changes
@@ -407,12 +429,12 @@ contains
    !> add_energies). At the prescribed dofs (pres = 1) also the work of the reactions, inertial
    !> and damping parts included, on the centred increment dt vbar = (u^(n+1) - u^(n-1))/2.
    !> vold becomes v^(n+1/2), the next step's v^(n-1/2).
-   subroutine special_correct(run, pres, mass, u, unew, fint, dt, alpha, vold, vstar, wstar, v, corr, work)
-      integer, intent(in) :: run(:, :)
+   subroutine special_correct(run, short, dof, pres, mass, u, unew, fint, dt, alpha, vold, vstar, wstar, v, corr, work)
+      integer, intent(in) :: run(:, :), short(:), dof(:)
       real(wp), intent(in) :: pres(*), mass(*), u(*), unew(*), fint(*), dt, alpha, vstar(*), wstar(*)
       real(wp), intent(inout) :: v(*), vold(*)
       real(wp), intent(out) :: corr(4), work
-      integer :: r, i, q, d, q0, d0
+      integer :: r, i, q, d, q0, d0, k
       real(wp) :: vo, vs, vn, md, c1, c3, c4, vbar, acc, f
       c1 = 0
       c3 = 0
@@ -439,6 +461,25 @@ contains
             v(d) = vn
             vold(q) = vn   ! v^(n-1/2) of the next step
          end do
+      end do
+      ! the dofs of the short runs, in list order after the long runs (a fixed order)
+      !$omp simd private(q, d, vo, vs, vn, md, vbar, acc, f) reduction(+:c1, c3, c4, work)
+      do k = 1, size(short)
+         q = short(k)
+         d = dof(q)
+         vo = vold(q)
+         vs = vstar(q)
+         vn = (unew(d) - u(d))/dt
+         vbar = 0.5_wp*(vn + vo)
+         acc = (vn - vo)/dt
+         f = mass(q)*(acc + alpha*vbar) + fint(d)
+         work = work + pres(q)*(f*dt*vbar)
+         md = mass(q)*(vn - vs)
+         c1 = c1 + md*(vn + vs)
+         c3 = c3 + (unew(d) - wstar(q))*fint(d)
+         c4 = c4 + md*((vn + vs) - 2*vo)
+         v(d) = vn
+         vold(q) = vn
       end do
       corr(1) = c1
       corr(2) = 0
