@@ -434,8 +434,8 @@ contains
       real(wp), intent(in) :: pres(*), mass(*), u(*), unew(*), fint(*), dt, alpha, vstar(*), wstar(*)
       real(wp), intent(inout) :: v(*), vold(*)
       real(wp), intent(out) :: corr(4), work
-      integer :: r, i, q, d, q0, d0, k
-      real(wp) :: vo, vs, vn, md, c1, c3, c4, vbar, acc, f
+      integer :: r, i, q0, d0, k
+      real(wp) :: c1, c3, c4
       c1 = 0
       c3 = 0
       c4 = 0
@@ -443,30 +443,27 @@ contains
       do r = 1, size(run, 2)
          d0 = run(1, r) - 1
          q0 = run(2, r) - 1
-         !$omp simd private(q, d, vo, vs, vn, md, vbar, acc, f) reduction(+:c1, c3, c4, work)
+         !$omp simd reduction(+:c1, c3, c4, work)
          do i = 1, run(3, r)
-            q = q0 + i
-            d = d0 + i
-            vo = vold(q)
-            vs = vstar(q)
-            vn = (unew(d) - u(d))/dt
-            vbar = 0.5_wp*(vn + vo)
-            acc = (vn - vo)/dt
-            f = mass(q)*(acc + alpha*vbar) + fint(d)
-            work = work + pres(q)*(f*dt*vbar)
-            md = mass(q)*(vn - vs)
-            c1 = c1 + md*(vn + vs)
-            c3 = c3 + (unew(d) - wstar(q))*fint(d)
-            c4 = c4 + md*((vn + vs) - 2*vo)
-            v(d) = vn
-            vold(q) = vn   ! v^(n-1/2) of the next step
+            call correct_one(q0 + i, d0 + i, c1, c3, c4, work)
          end do
       end do
       ! the dofs of the short runs, in list order after the long runs (a fixed order)
-      !$omp simd private(q, d, vo, vs, vn, md, vbar, acc, f) reduction(+:c1, c3, c4, work)
+      !$omp simd reduction(+:c1, c3, c4, work)
       do k = 1, size(short)
-         q = short(k)
-         d = dof(q)
+         call correct_one(short(k), dof(short(k)), c1, c3, c4, work)
+      end do
+      corr(1) = c1
+      corr(2) = 0
+      corr(3) = c3
+      corr(4) = c4
+   contains
+      !> Listed dof q (flattened dof d): v^(n+1/2), the next step's v^(n-1/2), and its terms of
+      !> the sums (the reduction's copies passed in: inlined, the loops above stay vector loops).
+      subroutine correct_one(q, d, c1, c3, c4, work)
+         integer, intent(in) :: q, d
+         real(wp), intent(inout) :: c1, c3, c4, work
+         real(wp) :: vo, vs, vn, md, vbar, acc, f
          vo = vold(q)
          vs = vstar(q)
          vn = (unew(d) - u(d))/dt
@@ -480,11 +477,7 @@ contains
          c4 = c4 + md*((vn + vs) - 2*vo)
          v(d) = vn
          vold(q) = vn
-      end do
-      corr(1) = c1
-      corr(2) = 0
-      corr(3) = c3
-      corr(4) = c4
+      end subroutine correct_one
    end subroutine special_correct
 
 
