@@ -86,10 +86,10 @@ module contact2d_rows
       !> slot_block at stored_of(b) (zero for a group kept whole in ablk) [N/mm]
       real(wp), allocatable :: blk(:, :, :)
       !> groups whose six derived blocks are not the swaps of their pairs (and a last group of fewer
-      !> than four rows): all 36 blocks, as slot_block (4, group_blocks, size(wgroup)) [N/mm]
+      !> than four rows): all 36 blocks, as slot_block (4, group_blocks, count(asym > 0)) [N/mm]
       real(wp), allocatable :: ablk(:, :, :)
-      !> the groups kept whole, in increasing order (the place of each in ablk)
-      integer, allocatable :: wgroup(:)
+      !> 0 for a group of stored_blocks, else its place in ablk (ngroup)
+      integer, allocatable :: asym(:)
       integer, allocatable :: xstart(:)         !< remainder: first extra block of each row (nnode + 1)
       integer(int32), allocatable :: xcol(:)    !< remainder: offsets into ud
       integer, allocatable :: xrow(:)           !< remainder: row of each extra block
@@ -127,12 +127,11 @@ contains
       logical :: free(group_width), whole
       real(wp) :: b36(4, group_blocks)
       real(wp), allocatable :: six(:, :, :)
-      integer, allocatable :: wg(:)
       integer :: na, b
       this%nnode = stiff%nnode
       this%ngroup = (this%nnode + group_rows - 1)/group_rows
       allocate (this%col(group_width, this%ngroup), this%blk(4, stored_blocks, this%ngroup), &
-                wg(this%ngroup), six(4, 6, this%ngroup))
+                this%asym(this%ngroup), six(4, 6, this%ngroup))
       na = 0
       allocate (this%xstart(this%nnode + 1), tcol(size(stiff%blk_col)), trow(size(stiff%blk_col)), &
                 tk(size(stiff%blk_col)))
@@ -221,24 +220,24 @@ contains
             if (any(transfer(b36([1, 2, 4, 3], derived_from(i)), 0_int64, 4) /= &
                     transfer(b36(:, derived(i)), 0_int64, 4))) whole = .true.
          end do
+         this%asym(k) = 0
          if (whole) then
             na = na + 1
-            wg(na) = k
+            this%asym(k) = na
             six(:, :, na) = b36(:, derived)
          end if
       end do
       ! the groups kept whole: their 36 blocks
-      this%wgroup = wg(1:na)
       allocate (this%ablk(4, group_blocks, na))
-      do i = 1, na
-         k = wg(i)
+      do k = 1, this%ngroup
+         if (this%asym(k) == 0) cycle
          do b = 1, group_blocks
-            if (stored_of(b) /= 0) this%ablk(:, b, i) = this%blk(:, stored_of(b), k)
+            if (stored_of(b) /= 0) this%ablk(:, b, this%asym(k)) = this%blk(:, stored_of(b), k)
          end do
-         this%ablk(:, derived, i) = six(:, :, i)
+         this%ablk(:, derived, this%asym(k)) = six(:, :, this%asym(k))
          this%blk(:, :, k) = 0
       end do
-      deallocate (six, wg)
+      deallocate (six)
       ! the remainder by rows (stable: a row's blocks in the order found)
       allocate (this%xcol(nx), this%xrow(nx), this%xblk(4, nx), xorder(nx))
       this%xstart = 0
@@ -348,16 +347,16 @@ contains
       ! the first element of ud on a 64-byte boundary (where the array is now)
       ud0 = int(modulo(-transfer(c_loc(this%ud(1)), 0_c_intptr_t), 64_c_intptr_t)/8)
       call sweep_chunks(this%nnode, this%ngroup, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, &
-                        this%xrow, this%xblk, size(this%ablk, 3), this%wgroup, this%ablk, &
+                        this%xrow, this%xblk, size(this%ablk, 3), this%asym, this%ablk, &
                         u, v, f, this%mdof, this%minvdof, ca, cb, dt, w, partial, this%ud(ud0 + 1:), &
                         this%nnode >= omp_min_nodes, full, size(this%krow), this%kstart, this%krow)
    end subroutine rows_sweep
 
    !> The chunks, shared among threads (explicit-shape arrays: unit strides known to the compiler):
    !> first every chunk's nodes into ud, then (all of ud being needed by the products) the rows.
-   subroutine sweep_chunks(nnode, ngroup, nx, col, blk, xstart, xcol, xrow, xblk, na, wgroup, ablk, u, v, f, mdof, &
+   subroutine sweep_chunks(nnode, ngroup, nx, col, blk, xstart, xcol, xrow, xblk, na, asym, ablk, u, v, f, mdof, &
                            minvdof, ca, cb, dt, w, partial, ud, par, full, nk, kstart, krow)
-      integer, intent(in) :: nnode, ngroup, nx, nk, na, wgroup(na)
+      integer, intent(in) :: nnode, ngroup, nx, nk, na, asym(ngroup)
       integer(int32), intent(in) :: col(group_width, ngroup), xcol(nx)
       real(wp), intent(in) :: blk(4, stored_blocks, ngroup), xblk(4, nx), ablk(4, group_blocks, na)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx), kstart(*), krow(nk)
@@ -381,12 +380,12 @@ contains
          r0 = (c - 1)*chunk_rows + 1
          r1 = min(c*chunk_rows, nnode)
          if (full) then
-            call products(nnode, ngroup, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, na, wgroup, ablk, ud, &
+            call products(nnode, ngroup, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, na, asym, ablk, ud, &
                           f(2*r0 - 1))
             call predict_full(2*(r1 - r0 + 1), u(2*r0 - 1), v(2*r0 - 1), f(2*r0 - 1), mdof(2*r0 - 1), &
                               minvdof(2*r0 - 1), ca, cb, dt, w(2*r0 - 1), partial(:, c))
          else
-            call products(nnode, ngroup, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, na, wgroup, ablk, ud, g)
+            call products(nnode, ngroup, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, na, asym, ablk, ud, g)
             call predict(2*(r1 - r0 + 1), u(2*r0 - 1), v(2*r0 - 1), g, mdof(2*r0 - 1), &
                          minvdof(2*r0 - 1), ca, cb, dt, w(2*r0 - 1), partial(:, c))
             ! K u at the kept rows
@@ -419,37 +418,24 @@ contains
    !> K u of the rows r0 .. r1 into g (g(1:2) the row r0; r0 = 4 j + 1: whole groups), group by
    !> group (group_sum); the x and y outputs of two rows are one 4-wide add. Then the remainder
    !> blocks, added in order.
-   subroutine products(nnode, ngroup, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, na, wgroup, ablk, ud, g)
-      integer, intent(in) :: nnode, ngroup, nx, r0, r1, na, wgroup(na)
+   subroutine products(nnode, ngroup, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, na, asym, ablk, ud, g)
+      integer, intent(in) :: nnode, ngroup, nx, r0, r1, na, asym(ngroup)
       integer(int32), intent(in) :: col(group_width, ngroup), xcol(nx)
       real(wp), intent(in) :: blk(4, stored_blocks, ngroup), xblk(4, nx), ablk(4, group_blocks, na)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx)
       real(wp), intent(in) :: ud(4*nnode)
       real(wp), intent(inout) :: g(2*r0 - 1:2*r1)
-      integer :: r, k, l, i, s, k0, k1, ks, ke, lo, hi, mid, w
+      integer :: r, k, l, i, s
       integer(i8) :: j
       real(wp) :: pa(4), pb(4), pc(4), pd(4), p(4), a(4), b(4)
       ! (one call of group_sum, so that it is inlined)
-      ! the groups kept whole (rare) split the chunk's groups into runs of stored ones: w the first
-      ! whole group from the chunk's first group on (bisection)
-      k0 = (r0 + 3)/4
-      k1 = r1/4
-      lo = 1
-      hi = na + 1
-      do while (lo < hi)
-         mid = (lo + hi)/2
-         if (wgroup(mid) < k0) then
-            lo = mid + 1
-         else
-            hi = mid
+      do k = (r0 + 3)/4, r1/4
+         if (asym(k) /= 0) then
+            ! a group kept whole (rare): the same sums and outputs (its own routine, so that the
+            ! outputs of the common groups stay in registers)
+            call group_sum_any(col(:, k), ablk(:, :, asym(k)), ud, g(8*k - 7:8*k))
+            cycle
          end if
-      end do
-      w = lo
-      ks = k0
-      do
-         ke = k1
-         if (w <= na) ke = min(k1, wgroup(w) - 1)
-         do k = ks, ke
          call group_sum(col(:, k), blk(:, :, k), ud, pa, pb, pc, pd)
          ! rows 1, 2: x1 y1 x2 y2 = (pa(1:2), pb(1:2)) + (pa(3:4), pb(3:4)); rows 3, 4 alike
          a(1:2) = pa(1:2)
@@ -468,15 +454,6 @@ contains
          do l = 1, 4
             g(8*k - 4 + l) = a(l) + b(l)
          end do
-         end do
-         if (w > na) exit
-         if (wgroup(w) > k1) exit
-         ! a group kept whole: the same sums and outputs (its own routine, so that the outputs of
-         ! the other groups stay in registers)
-         k = wgroup(w)
-         call group_sum_any(col(:, k), ablk(:, :, w), ud, g(8*k - 7:8*k))
-         ks = k + 1
-         w = w + 1
       end do
       if (mod(r1, 4) /= 0) then
          ! the last nodes of a mesh of 4 j + 1, 2 or 3 nodes: its last group's rows, slot by slot
@@ -486,7 +463,7 @@ contains
             do s = 1, group_width
                if (slot_block(i, s) == 0) cycle
                j = int(col(s, k), i8)
-               p = p + ablk(:, slot_block(i, s), na)*ud(j + 1:j + 4)
+               p = p + ablk(:, slot_block(i, s), asym(k))*ud(j + 1:j + 4)
             end do
             r = 4*(k - 1) + i
             g(2*r - 1) = p(1) + p(3)
