@@ -32,7 +32,7 @@
 !> mesh's boundary: an edge of one element only), and the sum u~ . K u is not formed, as by the
 !> inside rows of structured meshes; the values stored and the other sums are the same bits.
 module contact2d_rows
-   use, intrinsic :: iso_fortran_env, only: int32, int64
+   use, intrinsic :: iso_fortran_env, only: int32
    use contact2d_kinds, only: wp, i8
    use, intrinsic :: iso_c_binding, only: c_loc, c_intptr_t
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
@@ -47,20 +47,6 @@ module contact2d_rows
    !> row has 9 slots (a node of a regular quad mesh has 9 neighbours, itself included), a group
    !> 36 blocks over 16 columns.
    integer, parameter :: group_rows = 4, group_width = 16, group_blocks = 36
-   !> Blocks stored per group (GENERAL6B, docs/performance.md): in slots 1-4 the block of row j in
-   !> slot i < j is, on groups of one element's nodes, the transpose of the block of row i in slot j
-   !> (K is symmetric, bit for bit: contact2d_q1 symmetrizes K_e and both blocks are summed over
-   !> the same elements in the same order); with lanes (b11, b22, b12, b21) the transpose is lanes
-   !> 3, 4 swapped, so such a group stores the 30 other blocks (upper) and derives the 6 in
-   !> registers (one in-lane permute each). A group where any of the six is not bitwise the swap
-   !> of its pair keeps its 36 blocks apart (ablk) and is summed by group_sum_any, in the same order.
-   integer, parameter :: stored_blocks = 30
-   !> the stored block (1 .. 30) of each of the 36 blocks of slot_block, 0 for the six derived
-   integer, parameter :: stored_of(group_blocks) = [1, 0, 0, 0, 2, 3, 0, 0, 4, 5, 6, 0, 7, 8, 9, 10, &
-                                                    11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21, 22, 23, &
-                                                    24, 25, 26, 27, 28, 29, 30]
-   !> the six derived blocks (slot_block numbering) and the block each is the transpose of
-   integer, parameter :: derived(6) = [2, 3, 4, 7, 8, 12], derived_from(6) = [5, 9, 13, 10, 14, 15]
    !> rows of each slot, as bits (row i: bit i - 1)
    integer, parameter :: slot_mask(group_width) = [15, 15, 15, 15, 3, 3, 6, 6, 12, 12, 9, 9, 1, 2, 4, 8]
    !> block of row i in slot s: slot_block(i, s) (0: row i has no block in slot s); blocks are
@@ -82,14 +68,8 @@ module contact2d_rows
       integer :: ngroup = 0
       !> offset 4 (m - 1) into ud of the column node m of each slot of each group (group_width, ngroup)
       integer(int32), allocatable :: col(:, :)
-      !> (b11, b22, b12, b21) of the stored blocks of a group (4, stored_blocks, ngroup), block b of
-      !> slot_block at stored_of(b) (zero for a group kept whole in ablk) [N/mm]
+      !> (b11, b22, b12, b21) of each block of a group (4, group_blocks, ngroup), as slot_block [N/mm]
       real(wp), allocatable :: blk(:, :, :)
-      !> groups whose six derived blocks are not the swaps of their pairs (and a last group of fewer
-      !> than four rows): all 36 blocks, as slot_block (4, group_blocks, count(asym > 0)) [N/mm]
-      real(wp), allocatable :: ablk(:, :, :)
-      !> 0 for a group of stored_blocks, else its place in ablk (ngroup)
-      integer, allocatable :: asym(:)
       integer, allocatable :: xstart(:)         !< remainder: first extra block of each row (nnode + 1)
       integer(int32), allocatable :: xcol(:)    !< remainder: offsets into ud
       integer, allocatable :: xrow(:)           !< remainder: row of each extra block
@@ -124,15 +104,10 @@ contains
       type(stiffness_t), intent(in) :: stiff
       integer :: r, k, nx, c, nc, i, m, nu, t, best, sl, ov, bov, rest, brest, left, mx
       integer, allocatable :: ucol(:), umask(:), uk(:, :), tcol(:), trow(:), tk(:), order(:), xorder(:)
-      logical :: free(group_width), whole
-      real(wp) :: b36(4, group_blocks)
-      real(wp), allocatable :: six(:, :, :)
-      integer :: na, b
+      logical :: free(group_width)
       this%nnode = stiff%nnode
       this%ngroup = (this%nnode + group_rows - 1)/group_rows
-      allocate (this%col(group_width, this%ngroup), this%blk(4, stored_blocks, this%ngroup), &
-                this%asym(this%ngroup), six(4, 6, this%ngroup))
-      na = 0
+      allocate (this%col(group_width, this%ngroup), this%blk(4, group_blocks, this%ngroup))
       allocate (this%xstart(this%nnode + 1), tcol(size(stiff%blk_col)), trow(size(stiff%blk_col)), &
                 tk(size(stiff%blk_col)))
       mx = 0
@@ -143,7 +118,7 @@ contains
       nx = 0
       do k = 1, this%ngroup
          this%col(:, k) = 4*(group_rows*(k - 1))
-         b36 = 0
+         this%blk(:, :, k) = 0
          ! the distinct columns of the group's rows, which rows have them, and where
          nu = 0
          do i = 1, group_rows
@@ -205,39 +180,12 @@ contains
                this%col(best, k) = 4*(ucol(m) - 1)
                do i = 1, group_rows
                   if (.not. btest(iand(left, slot_mask(best)), i - 1)) cycle
-                  b36(:, slot_block(i, best)) = lanes(stiff%blk(:, :, uk(i, m)))
+                  this%blk(:, slot_block(i, best), k) = lanes(stiff%blk(:, :, uk(i, m)))
                end do
                left = iand(left, not(slot_mask(best)))
             end do
          end do
-         ! the stored blocks; the group whole apart unless each derived block is bitwise the swap
-         ! of its pair (and the group has four rows)
-         do b = 1, group_blocks
-            if (stored_of(b) /= 0) this%blk(:, stored_of(b), k) = b36(:, b)
-         end do
-         whole = group_rows*k > this%nnode
-         do i = 1, size(derived)
-            if (any(transfer(b36([1, 2, 4, 3], derived_from(i)), 0_int64, 4) /= &
-                    transfer(b36(:, derived(i)), 0_int64, 4))) whole = .true.
-         end do
-         this%asym(k) = 0
-         if (whole) then
-            na = na + 1
-            this%asym(k) = na
-            six(:, :, na) = b36(:, derived)
-         end if
       end do
-      ! the groups kept whole: their 36 blocks
-      allocate (this%ablk(4, group_blocks, na))
-      do k = 1, this%ngroup
-         if (this%asym(k) == 0) cycle
-         do b = 1, group_blocks
-            if (stored_of(b) /= 0) this%ablk(:, b, this%asym(k)) = this%blk(:, stored_of(b), k)
-         end do
-         this%ablk(:, derived, this%asym(k)) = six(:, :, this%asym(k))
-         this%blk(:, :, k) = 0
-      end do
-      deallocate (six)
       ! the remainder by rows (stable: a row's blocks in the order found)
       allocate (this%xcol(nx), this%xrow(nx), this%xblk(4, nx), xorder(nx))
       this%xstart = 0
@@ -347,18 +295,18 @@ contains
       ! the first element of ud on a 64-byte boundary (where the array is now)
       ud0 = int(modulo(-transfer(c_loc(this%ud(1)), 0_c_intptr_t), 64_c_intptr_t)/8)
       call sweep_chunks(this%nnode, this%ngroup, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, &
-                        this%xrow, this%xblk, size(this%ablk, 3), this%asym, this%ablk, &
+                        this%xrow, this%xblk, &
                         u, v, f, this%mdof, this%minvdof, ca, cb, dt, w, partial, this%ud(ud0 + 1:), &
                         this%nnode >= omp_min_nodes, full, size(this%krow), this%kstart, this%krow)
    end subroutine rows_sweep
 
    !> The chunks, shared among threads (explicit-shape arrays: unit strides known to the compiler):
    !> first every chunk's nodes into ud, then (all of ud being needed by the products) the rows.
-   subroutine sweep_chunks(nnode, ngroup, nx, col, blk, xstart, xcol, xrow, xblk, na, asym, ablk, u, v, f, mdof, &
-                           minvdof, ca, cb, dt, w, partial, ud, par, full, nk, kstart, krow)
-      integer, intent(in) :: nnode, ngroup, nx, nk, na, asym(ngroup)
+   subroutine sweep_chunks(nnode, ngroup, nx, col, blk, xstart, xcol, xrow, xblk, u, v, f, mdof, minvdof, ca, cb, &
+                           dt, w, partial, ud, par, full, nk, kstart, krow)
+      integer, intent(in) :: nnode, ngroup, nx, nk
       integer(int32), intent(in) :: col(group_width, ngroup), xcol(nx)
-      real(wp), intent(in) :: blk(4, stored_blocks, ngroup), xblk(4, nx), ablk(4, group_blocks, na)
+      real(wp), intent(in) :: blk(4, group_blocks, ngroup), xblk(4, nx)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx), kstart(*), krow(nk)
       real(wp), intent(in) :: u(2*nnode), mdof(2*nnode), minvdof(2*nnode), ca, cb, dt
       real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode), ud(4*nnode)
@@ -380,12 +328,11 @@ contains
          r0 = (c - 1)*chunk_rows + 1
          r1 = min(c*chunk_rows, nnode)
          if (full) then
-            call products(nnode, ngroup, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, na, asym, ablk, ud, &
-                          f(2*r0 - 1))
+            call products(nnode, ngroup, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, f(2*r0 - 1))
             call predict_full(2*(r1 - r0 + 1), u(2*r0 - 1), v(2*r0 - 1), f(2*r0 - 1), mdof(2*r0 - 1), &
                               minvdof(2*r0 - 1), ca, cb, dt, w(2*r0 - 1), partial(:, c))
          else
-            call products(nnode, ngroup, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, na, asym, ablk, ud, g)
+            call products(nnode, ngroup, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, g)
             call predict(2*(r1 - r0 + 1), u(2*r0 - 1), v(2*r0 - 1), g, mdof(2*r0 - 1), &
                          minvdof(2*r0 - 1), ca, cb, dt, w(2*r0 - 1), partial(:, c))
             ! K u at the kept rows
@@ -418,10 +365,10 @@ contains
    !> K u of the rows r0 .. r1 into g (g(1:2) the row r0; r0 = 4 j + 1: whole groups), group by
    !> group (group_sum); the x and y outputs of two rows are one 4-wide add. Then the remainder
    !> blocks, added in order.
-   subroutine products(nnode, ngroup, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, na, asym, ablk, ud, g)
-      integer, intent(in) :: nnode, ngroup, nx, r0, r1, na, asym(ngroup)
+   subroutine products(nnode, ngroup, nx, r0, r1, col, blk, xstart, xcol, xrow, xblk, ud, g)
+      integer, intent(in) :: nnode, ngroup, nx, r0, r1
       integer(int32), intent(in) :: col(group_width, ngroup), xcol(nx)
-      real(wp), intent(in) :: blk(4, stored_blocks, ngroup), xblk(4, nx), ablk(4, group_blocks, na)
+      real(wp), intent(in) :: blk(4, group_blocks, ngroup), xblk(4, nx)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx)
       real(wp), intent(in) :: ud(4*nnode)
       real(wp), intent(inout) :: g(2*r0 - 1:2*r1)
@@ -430,12 +377,6 @@ contains
       real(wp) :: pa(4), pb(4), pc(4), pd(4), p(4), a(4), b(4)
       ! (one call of group_sum, so that it is inlined)
       do k = (r0 + 3)/4, r1/4
-         if (asym(k) /= 0) then
-            ! a group kept whole (rare): the same sums and outputs (its own routine, so that the
-            ! outputs of the common groups stay in registers)
-            call group_sum_any(col(:, k), ablk(:, :, asym(k)), ud, g(8*k - 7:8*k))
-            cycle
-         end if
          call group_sum(col(:, k), blk(:, :, k), ud, pa, pb, pc, pd)
          ! rows 1, 2: x1 y1 x2 y2 = (pa(1:2), pb(1:2)) + (pa(3:4), pb(3:4)); rows 3, 4 alike
          a(1:2) = pa(1:2)
@@ -463,7 +404,7 @@ contains
             do s = 1, group_width
                if (slot_block(i, s) == 0) cycle
                j = int(col(s, k), i8)
-               p = p + ablk(:, slot_block(i, s), asym(k))*ud(j + 1:j + 4)
+               p = p + blk(:, slot_block(i, s), k)*ud(j + 1:j + 4)
             end do
             r = 4*(k - 1) + i
             g(2*r - 1) = p(1) + p(3)
@@ -483,138 +424,12 @@ contains
    !> loaded once, then one 4-wide multiply-add per row of the slot. A row's 9 blocks, in slot
    !> order, go in turn into two accumulators (the first two products, not multiply-adds on zero:
    !> the same values); returned as their sum, pa .. pd for rows 1 .. 4. Written out slot by slot
-   !> (blocks as slot_block, from the stored_blocks of the group: the six derived ones as the
-   !> lane swap (1, 2, 4, 3) of their pairs, held in ta .. td).
+   !> (blocks as slot_block).
    pure subroutine group_sum(col, blk, ud, pa, pb, pc, pd)
       integer(int32), intent(in) :: col(group_width)
-      real(wp), intent(in) :: blk(4, stored_blocks), ud(*)
-      real(wp), intent(out) :: pa(4), pb(4), pc(4), pd(4)
-      real(wp) :: a1(4), a2(4), b1(4), b2(4), c1(4), c2(4), d1(4), d2(4), tb(4), tc(4), td(4)
-      integer :: l
-      integer(i8) :: j
-      j = int(col(1), i8)
-      tb = [blk(1, 2), blk(2, 2), blk(4, 2), blk(3, 2)]   ! block 2: transpose of block 5
-      tc = [blk(1, 4), blk(2, 4), blk(4, 4), blk(3, 4)]   ! block 3: transpose of block 9
-      td = [blk(1, 7), blk(2, 7), blk(4, 7), blk(3, 7)]   ! block 4: transpose of block 13
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         a1(l) = blk(l, 1)*ud(j + l)
-         b1(l) = tb(l)*ud(j + l)
-         c1(l) = tc(l)*ud(j + l)
-         d1(l) = td(l)*ud(j + l)
-      end do
-      j = int(col(2), i8)
-      tc = [blk(1, 5), blk(2, 5), blk(4, 5), blk(3, 5)]   ! block 7: transpose of block 10
-      td = [blk(1, 8), blk(2, 8), blk(4, 8), blk(3, 8)]   ! block 8: transpose of block 14
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         a2(l) = blk(l, 2)*ud(j + l)
-         b2(l) = blk(l, 3)*ud(j + l)
-         c2(l) = tc(l)*ud(j + l)
-         d2(l) = td(l)*ud(j + l)
-      end do
-      j = int(col(3), i8)
-      td = [blk(1, 9), blk(2, 9), blk(4, 9), blk(3, 9)]   ! block 12: transpose of block 15
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         a1(l) = a1(l) + blk(l, 4)*ud(j + l)
-         b1(l) = b1(l) + blk(l, 5)*ud(j + l)
-         c1(l) = c1(l) + blk(l, 6)*ud(j + l)
-         d1(l) = d1(l) + td(l)*ud(j + l)
-      end do
-      j = int(col(4), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         a2(l) = a2(l) + blk(l, 7)*ud(j + l)
-         b2(l) = b2(l) + blk(l, 8)*ud(j + l)
-         c2(l) = c2(l) + blk(l, 9)*ud(j + l)
-         d2(l) = d2(l) + blk(l, 10)*ud(j + l)
-      end do
-      j = int(col(5), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         a1(l) = a1(l) + blk(l, 11)*ud(j + l)
-         b1(l) = b1(l) + blk(l, 12)*ud(j + l)
-      end do
-      j = int(col(6), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         a2(l) = a2(l) + blk(l, 13)*ud(j + l)
-         b2(l) = b2(l) + blk(l, 14)*ud(j + l)
-      end do
-      j = int(col(7), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         b1(l) = b1(l) + blk(l, 15)*ud(j + l)
-         c1(l) = c1(l) + blk(l, 16)*ud(j + l)
-      end do
-      j = int(col(8), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         b2(l) = b2(l) + blk(l, 17)*ud(j + l)
-         c2(l) = c2(l) + blk(l, 18)*ud(j + l)
-      end do
-      j = int(col(9), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         c1(l) = c1(l) + blk(l, 19)*ud(j + l)
-         d1(l) = d1(l) + blk(l, 20)*ud(j + l)
-      end do
-      j = int(col(10), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         c2(l) = c2(l) + blk(l, 21)*ud(j + l)
-         d2(l) = d2(l) + blk(l, 22)*ud(j + l)
-      end do
-      j = int(col(11), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         a1(l) = a1(l) + blk(l, 23)*ud(j + l)
-         d1(l) = d1(l) + blk(l, 24)*ud(j + l)
-      end do
-      j = int(col(12), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         a2(l) = a2(l) + blk(l, 25)*ud(j + l)
-         d2(l) = d2(l) + blk(l, 26)*ud(j + l)
-      end do
-      j = int(col(13), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         a1(l) = a1(l) + blk(l, 27)*ud(j + l)
-      end do
-      j = int(col(14), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         b1(l) = b1(l) + blk(l, 28)*ud(j + l)
-      end do
-      j = int(col(15), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         c1(l) = c1(l) + blk(l, 29)*ud(j + l)
-      end do
-      j = int(col(16), i8)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         d1(l) = d1(l) + blk(l, 30)*ud(j + l)
-      end do
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         pa(l) = a1(l) + a2(l)
-         pb(l) = b1(l) + b2(l)
-         pc(l) = c1(l) + c2(l)
-         pd(l) = d1(l) + d2(l)
-      end do
-   end subroutine group_sum
-
-   !> The same sums from all 36 blocks of a group (as slot_block), written out as group_sum was
-   !> before GENERAL6B (the same source, so that the compiler contracts the same products into
-   !> multiply-adds: the same bits), and out the x and y of its four rows as products does.
-   pure subroutine group_sum_any(col, blk, ud, gk)
-      integer(int32), intent(in) :: col(group_width)
       real(wp), intent(in) :: blk(4, group_blocks), ud(*)
-      real(wp), intent(out) :: gk(2*group_rows)
-      real(wp) :: a1(4), a2(4), b1(4), b2(4), c1(4), c2(4), d1(4), d2(4), pa(4), pb(4), pc(4), pd(4), a(4), b(4)
+      real(wp), intent(out) :: pa(4), pb(4), pc(4), pd(4)
+      real(wp) :: a1(4), a2(4), b1(4), b2(4), c1(4), c2(4), d1(4), d2(4)
       integer :: l
       integer(i8) :: j
       j = int(col(1), i8)
@@ -724,23 +539,7 @@ contains
          pc(l) = c1(l) + c2(l)
          pd(l) = d1(l) + d2(l)
       end do
-      a(1:2) = pa(1:2)
-      a(3:4) = pb(1:2)
-      b(1:2) = pa(3:4)
-      b(3:4) = pb(3:4)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         gk(l) = a(l) + b(l)
-      end do
-      a(1:2) = pc(1:2)
-      a(3:4) = pd(1:2)
-      b(1:2) = pc(3:4)
-      b(3:4) = pd(3:4)
-      !$omp simd simdlen(4)
-      do l = 1, 4
-         gk(4 + l) = a(l) + b(l)
-      end do
-   end subroutine group_sum_any
+   end subroutine group_sum
 
    !> Predictor and sums on the n flat dofs of a chunk while it is in cache (as row_update of
    !> contact2d_sweep; the second sum is left zero, as by the grid rows: the caller has it from
