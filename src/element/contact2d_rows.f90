@@ -329,10 +329,7 @@ contains
       integer :: q, r
       do q = 1, n
          r = node(q)
-         ud(1, r) = u(1, r)
-         ud(2, r) = u(2, r)
-         ud(3, r) = u(2, r)
-         ud(4, r) = u(1, r)
+         ud(:, r) = [u(1, r), u(2, r), u(2, r), u(1, r)]
       end do
    end subroutine spread_nodes
 
