@@ -75,13 +75,10 @@ module contact2d_rows
       integer, allocatable :: xrow(:)           !< remainder: row of each extra block
       real(wp), allocatable :: xblk(:, :)       !< remainder: blocks (4, nextra), as blk [N/mm]
       real(wp), allocatable :: mdof(:), minvdof(:)   !< mass and 1/mass per dof (2 nnode) [t], [1/t]
-      !> scratch of the sweep: (ux, uy, uy, ux) of each node, two buffers (ud_len, 2), each from
-      !> its first element on a 64-byte boundary on (rows_sweep), so that every node's four values
-      !> are one aligned vector (no load across two cache lines) [mm]. The products of a sweep
-      !> read buffer cur (u^n spread); its predictor writes the spread of u~ into the other one,
-      !> which the next sweep reads (rows_sweep: double buffering, no separate pass over u)
-      real(wp), allocatable :: ud(:, :)
-      integer :: cur = 1
+      !> scratch of the sweep: (ux, uy, uy, ux) of each node, from the first element on a 64-byte
+      !> boundary on (rows_sweep), so that every node's four values are one aligned vector (no
+      !> load across two cache lines) (4 nnode + 8) [mm]
+      real(wp), allocatable :: ud(:)
       !> nodes whose K u every sweep stores, full or not: those on the mesh's boundary (nnode)
       logical, allocatable :: kept(:)
       !> the kept rows of chunk c are krow(kstart(c) : kstart(c + 1) - 1), in increasing order
@@ -217,10 +214,8 @@ contains
       end do
       this%mdof = reshape(spread(stiff%mass, 1, 2), [2*this%nnode])
       this%minvdof = 1/this%mdof
-      ! (a multiple of 8 doubles: both buffers start at the same offset from a 64-byte boundary)
-      allocate (this%ud(8*((4*this%nnode + 7)/8) + 8, 2))
+      allocate (this%ud(4*this%nnode + 8))
       this%ud = 0
-      this%cur = 1
       call boundary_nodes(stiff%conn, this%nnode, this%kept)
       nc = (this%nnode + chunk_rows - 1)/chunk_rows
       allocate (this%kstart(nc + 1), this%krow(count(this%kept)))
@@ -287,16 +282,7 @@ contains
    !>    (sum m v*^2, 0, sum w . f, sum m (v* - v)^2: the second sum left to the caller)
    !> (the quantities of contact2d_sweep's module header). full = .false.: f only at the kept
    !> rows, and the third sum left zero (module header).
-   !>
-   !> The products read u spread as (ux, uy, uy, ux) (module header) from buffer cur of ud; the
-   !> predictor of each chunk spreads the chunk's u~ into the other buffer while it is in cache,
-   !> and the buffers are swapped, so the next sweep finds u~ spread already. Without changed,
-   !> u is spread in full first (a separate pass over the nodes: the first sweep, or u set by
-   !> someone else). With changed, the caller promises that u is the u~ of the last sweep of
-   !> this rows_t but at the nodes listed in changed (those whose dofs loads, prescribed values
-   !> and the contact step moved): only those are spread again. Either way the products read
-   !> the same values as a full spread of u: the same bits.
-   subroutine rows_sweep(this, u, v, f, ca, cb, dt, w, partial, full, changed)
+   subroutine rows_sweep(this, u, v, f, ca, cb, dt, w, partial, full)
       class(rows_t), intent(inout), target :: this
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
       real(wp), intent(inout) :: v(:, :)    !< v^(n-1/2) in, v* out [mm/s]
@@ -305,61 +291,38 @@ contains
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       real(wp), intent(inout) :: partial(:, :)   !< (4, rows_parts)
       logical, intent(in) :: full           !< K u at every node and the sum u~ . K u
-      !> u is the last sweep's u~ but at these nodes
-      integer, intent(in), optional :: changed(:)
-      integer :: ud0, nxt
-      ! the first element of ud on a 64-byte boundary (where the array is now; the same offset
-      ! for both buffers)
-      ud0 = int(modulo(-transfer(c_loc(this%ud(1, 1)), 0_c_intptr_t), 64_c_intptr_t)/8)
-      nxt = 3 - this%cur
-      if (present(changed)) call spread_nodes(size(changed), changed, this%nnode, u, this%ud(ud0 + 1:, this%cur))
+      integer :: ud0
+      ! the first element of ud on a 64-byte boundary (where the array is now)
+      ud0 = int(modulo(-transfer(c_loc(this%ud(1)), 0_c_intptr_t), 64_c_intptr_t)/8)
       call sweep_chunks(this%nnode, this%ngroup, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, &
                         this%xrow, this%xblk, &
-                        u, v, f, this%mdof, this%minvdof, ca, cb, dt, w, partial, this%ud(ud0 + 1:, this%cur), &
-                        this%ud(ud0 + 1:, nxt), .not. present(changed), &
+                        u, v, f, this%mdof, this%minvdof, ca, cb, dt, w, partial, this%ud(ud0 + 1:), &
                         this%nnode >= omp_min_nodes, full, size(this%krow), this%kstart, this%krow)
-      this%cur = nxt
    end subroutine rows_sweep
 
-   !> ud = (ux, uy, uy, ux) at the listed nodes (serial: a short list, outside the threads).
-   subroutine spread_nodes(n, node, nnode, u, ud)
-      integer, intent(in) :: n, node(n), nnode
-      real(wp), intent(in) :: u(2, nnode)
-      real(wp), intent(inout) :: ud(4, nnode)
-      integer :: q, r
-      do q = 1, n
-         r = node(q)
-         ud(:, r) = [u(1, r), u(2, r), u(2, r), u(1, r)]
-      end do
-   end subroutine spread_nodes
-
    !> The chunks, shared among threads (explicit-shape arrays: unit strides known to the compiler):
-   !> with fresh, first every chunk's nodes of u into ud (all of ud being needed by the products);
-   !> then the rows, each chunk's u~ spread into udn after its predictor (the next sweep's ud:
-   !> no chunk writes what another chunk's products read in this sweep).
+   !> first every chunk's nodes into ud, then (all of ud being needed by the products) the rows.
    subroutine sweep_chunks(nnode, ngroup, nx, col, blk, xstart, xcol, xrow, xblk, u, v, f, mdof, minvdof, ca, cb, &
-                           dt, w, partial, ud, udn, fresh, par, full, nk, kstart, krow)
+                           dt, w, partial, ud, par, full, nk, kstart, krow)
       integer, intent(in) :: nnode, ngroup, nx, nk
       integer(int32), intent(in) :: col(group_width, ngroup), xcol(nx)
       real(wp), intent(in) :: blk(4, group_blocks, ngroup), xblk(4, nx)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx), kstart(*), krow(nk)
       real(wp), intent(in) :: u(2*nnode), mdof(2*nnode), minvdof(2*nnode), ca, cb, dt
-      real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode), ud(4*nnode), udn(4*nnode)
-      logical, intent(in) :: fresh, par, full
+      real(wp), intent(inout) :: v(2*nnode), f(2*nnode), w(2*nnode), ud(4*nnode)
+      logical, intent(in) :: par, full
       real(wp), intent(inout) :: partial(4, *)
       integer :: c, r0, r1, k, r
       !> K u of the chunk on steps that are not full (first-level cache; a fixed size, no allocation)
       real(wp) :: g(2*chunk_rows)
       !$omp parallel if(par) private(r0, r1, k, r, g)
-      if (fresh) then
-         !$omp do schedule(static)
-         do c = 1, (nnode + chunk_rows - 1)/chunk_rows
-            r0 = (c - 1)*chunk_rows + 1
-            r1 = min(c*chunk_rows, nnode)
-            call spread_u(r0, r1, u(2*r0 - 1), ud(4*r0 - 3))
-         end do
-         !$omp end do
-      end if
+      !$omp do schedule(static)
+      do c = 1, (nnode + chunk_rows - 1)/chunk_rows
+         r0 = (c - 1)*chunk_rows + 1
+         r1 = min(c*chunk_rows, nnode)
+         call spread_u(r0, r1, u(2*r0 - 1), ud(4*r0 - 3))
+      end do
+      !$omp end do
       !$omp do schedule(dynamic)
       do c = 1, (nnode + chunk_rows - 1)/chunk_rows
          r0 = (c - 1)*chunk_rows + 1
@@ -379,8 +342,6 @@ contains
                f(2*r) = g(2*(r - r0) + 2)
             end do
          end if
-         ! u~ of the chunk, still in cache, for the next sweep's products
-         call spread_u(r0, r1, w(2*r0 - 1), udn(4*r0 - 3))
       end do
       !$omp end do
       !$omp end parallel

@@ -155,9 +155,7 @@ contains
 
    !> One sweep: f = K u, v = v* = ca v - cb M^-1 f, w = u + dt v*, and the partial sums of
    !> this%partial (see the module header).
-   !> changed (general meshes; contact2d_rows rows_sweep): u is the u~ of the last sweep but at
-   !> these nodes; structured meshes do not use it.
-   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w, full, changed)
+   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w, full)
       class(sweep_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
@@ -167,7 +165,6 @@ contains
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       !> K u at every node and the sum u~ . K u (default); else only where kept (module header)
       logical, intent(in), optional :: full
-      integer, intent(in), optional :: changed(:)
       logical :: all_out
       all_out = .true.
       if (present(full)) all_out = full
@@ -181,7 +178,7 @@ contains
                          u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
                          this%scr, this%nscr, all_out)
       else
-         call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial, all_out, changed)
+         call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial, all_out)
       end if
    end subroutine sweep_step
 

@@ -60,7 +60,6 @@ module contact2d_explicit
       !> copies and sums; the places of the other dofs (short runs, as on the boundaries of Gmsh
       !> meshes) in s_short: one loop over all of them, no vector set-up per run.
       integer, allocatable :: sdof(:), s_run(:, :), s_short(:)
-      integer, allocatable :: s_node(:)    !< the nodes of the listed dofs, in order
       real(wp), allocatable :: s_pres(:)   !< 1 at the prescribed dofs of the list, else 0
       integer, allocatable :: p_dof(:)     !< the dof of each prescribed value (flattened), load order
       !> per dof (flattened): 0 on the listed dofs, 1 elsewhere (explicit_residual)
@@ -212,13 +211,7 @@ contains
          full = k == nsteps .or. this%s_interior
          if (this%damping == damping_auto) &
             full = full .or. mod(this%step, int(this%damping_interval, i8)) == 0
-         ! (after the first step, u is the last sweep's u~ but at the nodes of the listed dofs:
-         ! a general mesh's sweep then spreads only those again, contact2d_rows rows_sweep)
-         if (k == 1) then
-            call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full)
-         else
-            call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full, this%s_node)
-         end if
+         call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full)
          ! the dofs changed below: keep v* and u~, give back v^(n-1/2) (loads, reactions and
          ! the contact step use it)
          call special_keep(this%s_run, this%s_short, this%sdof, this%v, this%unew, this%s_vold, this%s_vstar, this%s_wstar)
@@ -311,7 +304,6 @@ contains
          this%s_ncontact = contact%nc
       end if
       n = count(mark)
-      this%s_node = pack([(node, node=1, this%nnode)], any(mark, dim=1))
       this%s_interior = .false.
       do node = 1, this%nnode
          if (any(mark(:, node))) this%s_interior = this%s_interior .or. .not. this%sweep%kept(node)
