@@ -63,7 +63,7 @@ contains
       type(material_t), intent(in) :: mat
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      real(wp), allocatable :: rel(:, :, :)
+      real(wp), allocatable :: rel(:, :, :), me(:, :)
       real(wp) :: xe(2, 4), r(2, 4), omega2, scale
       integer :: e, s, first, info
       character(len=64) :: buf
@@ -71,7 +71,7 @@ contains
       stat = 0
       errmsg = ''
       allocate (this%shape_of(mesh%nel), this%mass(mesh%nnode), rel(2, 4, mesh%nel))
-      allocate (this%ke(8, 8, mesh%nel))
+      allocate (this%ke(8, 8, mesh%nel), me(4, mesh%nel))
       this%conn = mesh%conn
       this%mass = 0
       this%nshape = 0
@@ -83,7 +83,6 @@ contains
             errmsg = 'element '//trim(buf)//' is inverted or not counter-clockwise'
             return
          end if
-         this%mass(mesh%conn(:, e)) = this%mass(mesh%conn(:, e)) + q1_lumped_mass(xe, mat%density)
          r = xe - spread(xe(:, 1), 2, 4)
          scale = shape_tol*maxval(abs(r))
          this%shape_of(e) = 0
@@ -99,15 +98,17 @@ contains
             rel(:, :, this%nshape) = r
             this%shape_of(e) = this%nshape
             call q1_stiffness(xe, mat%dmat, this%ke(:, :, this%nshape))
+            me(:, this%nshape) = q1_lumped_mass(xe, mat%density)
          end if
+         ! the lumped mass of the element's shape, as its stiffness: every element of a shape
+         ! the same masses to the bit (docs/performance.md "Masses by shape")
+         this%mass(mesh%conn(:, e)) = this%mass(mesh%conn(:, e)) + me(:, this%shape_of(e))
       end do
       this%ke = this%ke(:, :, 1:this%nshape)
       ! element bound on omega_max: one eigenproblem per shape with that shape's lumped mass
       this%omega2_element = 0
       do s = 1, this%nshape
-         e = findloc(this%shape_of, s, dim=1)
-         call q1_max_frequency_squared(this%ke(:, :, s), &
-                                       q1_lumped_mass(mesh%element_coordinates(e), mat%density), omega2, info)
+         call q1_max_frequency_squared(this%ke(:, :, s), me(:, s), omega2, info)
          if (info /= 0) then
             write (buf, '(i0)') info
             stat = 2
