@@ -215,8 +215,9 @@ contains
       integer :: j, rt, t, jmade, k, kn
       ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it).
       ! Static rows: each thread keeps the same block of rows every step, so they stay in its own
-      ! cache (dynamic sharing moved rows between cores: 1.7x slower on two threads, measured
-      ! in docs/performance.md "Threads that never hurt")
+      ! cache (with dynamic sharing rows moved between cores: one thread took 0.67 s for half the
+      ! rows where one thread alone took 0.58 s for all, docs/performance.md "Where a two-thread
+      ! step goes")
       ! Each inside row forms the sum and difference rows of the next one in its own loop (scratch
       ! slots 3 - k, 4 - k); jmade is the row they were formed for (one thread's rows are
       ! consecutive: only its first inside row forms its own)

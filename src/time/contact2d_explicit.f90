@@ -441,7 +441,7 @@ contains
       c4 = 0
       work = 0
       ! (correct_one written out here: called from two loops, gfortran 12 did not inline it, and
-      ! its calls kept the long runs from being vector loops: 4 % of the step at k = 5)
+      ! its calls kept the long runs from being vector loops: about 4.5 % of the run at k = 5)
       do r = 1, size(run, 2)
          d0 = run(1, r) - 1
          q0 = run(2, r) - 1
