@@ -32,6 +32,7 @@ module contact2d_sweep
    use contact2d_kinds, only: wp
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    use contact2d_rows, only: rows_t
+   use contact2d_simd_config, only: sweep_lanes
    use omp_lib, only: omp_get_max_threads, omp_get_num_procs, omp_get_thread_num
    implicit none
    private
@@ -362,8 +363,9 @@ contains
    !> coefficients by the parity of p (x or y output; CY = 0 for x, CX = 0 for y, CX = CY = C
    !> otherwise). The difference row is kept with x and y swapped, E(p) = D(p xor 1), so that the
    !> last term is C (E(p + 2) - E(p - 2)) on either parity: 6 multiply-adds and 8 loads per
-   !> output instead of 21 and 21. Blocks of four outputs (one 256-bit vector; four lanes of
-   !> partial sums), so that coefficients and sums stay in registers. cbm = cb M^-1 of the row.
+   !> output instead of 21 and 21. Blocks of eight outputs: one vector of eight lanes of partial
+   !> sums with AVX-512, else two blocks of four in a vector of four lanes (sweep_lanes), so
+   !> that coefficients and sums stay in registers. cbm = cb M^-1 of the row.
    subroutine grid_row_sym(n, um, u0, up, u2, f, q, e, sb, eb, sn, en, have, v, m, cbm, ca, dt, w, part, full)
       integer, intent(in) :: n
       real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 5)
@@ -377,9 +379,9 @@ contains
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
       logical, intent(in) :: full   !< store f and form the u~ . f sum at the interior outputs
+      integer, parameter :: nl = sweep_lanes, nu = 8/sweep_lanes   !< lanes, groups per block
       integer :: b, l, p, nb, k, i
-      integer, parameter :: nu = 2   !< blocks per loop step (steps without K u)
-      real(wp) :: fp, vo, vs, wn, ek, es, ea, ek4(0:3), es4(0:3), ea4(0:3)
+      real(wp) :: fp, vo, vs, wn, ek, es, ea, ekl(0:nl - 1), esl(0:nl - 1), eal(0:nl - 1)
       ! (array elements for the explicit-shape dummies: no temporaries)
       call end_node(e(1, 1, -1, 1), um(0), u0(0), up(0), f(0))
       call end_node(e(1, 1, -1, 2), um(n - 4), u0(n - 4), up(n - 4), f(n - 2))
@@ -396,32 +398,35 @@ contains
                eb(p + 1) = up(p) - um(p)
             end do
          end if
-         ek4 = 0
-         es4 = 0
-         ea4 = 0
-         ! outputs p = 2 .. n - 3 by blocks of four (lane l has the parity of l)
-         nb = (n - 4)/4
+         ekl = 0
+         esl = 0
+         eal = 0
+         ! outputs p = 2 .. n - 3 by blocks of eight, nu groups of nl lanes (lane l has the parity
+         ! of l; contact2d_simd_config)
+         nb = (n - 4)/8
          if (full) then
             do b = 0, nb - 1
                !$omp simd private(p, fp, vo, vs, wn)
-               do l = 0, 3
-                  p = 2 + 4*b + l
-                  fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
-                        + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
-                       + q(l, 5)*(eb(p + 2) - eb(p - 2))
-                  f(p) = fp
-                  vo = v(p)
-                  vs = ca*vo - cbm(p)*fp
-                  wn = u0(p) + dt*vs
-                  ek4(l) = ek4(l) + m(p)*vs*vs
-                  es4(l) = es4(l) + wn*fp
-                  ea4(l) = ea4(l) + m(p)*(vs - vo)**2
-                  v(p) = vs
-                  w(p) = wn
+               do l = 0, nl - 1
+                  do i = 0, nu - 1
+                     p = 2 + 8*b + nl*i + l
+                     fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
+                           + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
+                          + q(l, 5)*(eb(p + 2) - eb(p - 2))
+                     f(p) = fp
+                     vo = v(p)
+                     vs = ca*vo - cbm(p)*fp
+                     wn = u0(p) + dt*vs
+                     ekl(l) = ekl(l) + m(p)*vs*vs
+                     esl(l) = esl(l) + wn*fp
+                     eal(l) = eal(l) + m(p)*(vs - vo)**2
+                     v(p) = vs
+                     w(p) = wn
+                  end do
                end do
                !$omp simd private(p)
-               do k = 0, 2, 2
-                  p = 2 + 4*b + k
+               do k = 0, 6, 2
+                  p = 2 + 8*b + k
                   sn(p) = u0(p) + u2(p)
                   sn(p + 1) = u0(p + 1) + u2(p + 1)
                   en(p) = u2(p + 1) - u0(p + 1)
@@ -429,49 +434,26 @@ contains
                end do
             end do
          else
-            ! the same without f and the u~ . f sum; blocks by groups of nu (one loop step for nu)
-            do b = 0, nb - nu, nu
+            ! the same without f and the u~ . f sum
+            do b = 0, nb - 1
                !$omp simd private(p, fp, vo, vs)
-               do l = 0, 3
+               do l = 0, nl - 1
                   do i = 0, nu - 1
-                     p = 2 + 4*(b + i) + l
+                     p = 2 + 8*b + nl*i + l
                      fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
                            + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
                           + q(l, 5)*(eb(p + 2) - eb(p - 2))
                      vo = v(p)
                      vs = ca*vo - cbm(p)*fp
-                     ek4(l) = ek4(l) + m(p)*vs*vs
-                     ea4(l) = ea4(l) + m(p)*(vs - vo)**2
+                     ekl(l) = ekl(l) + m(p)*vs*vs
+                     eal(l) = eal(l) + m(p)*(vs - vo)**2
                      v(p) = vs
                      w(p) = u0(p) + dt*vs
                   end do
                end do
                !$omp simd private(p)
-               do k = 0, 4*nu - 2, 2
-                  p = 2 + 4*b + k
-                  sn(p) = u0(p) + u2(p)
-                  sn(p + 1) = u0(p + 1) + u2(p + 1)
-                  en(p) = u2(p + 1) - u0(p + 1)
-                  en(p + 1) = u2(p) - u0(p)
-               end do
-            end do
-            do b = nu*(nb/nu), nb - 1
-               !$omp simd private(p, fp, vo, vs)
-               do l = 0, 3
-                  p = 2 + 4*b + l
-                  fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
-                        + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
-                       + q(l, 5)*(eb(p + 2) - eb(p - 2))
-                  vo = v(p)
-                  vs = ca*vo - cbm(p)*fp
-                  ek4(l) = ek4(l) + m(p)*vs*vs
-                  ea4(l) = ea4(l) + m(p)*(vs - vo)**2
-                  v(p) = vs
-                  w(p) = u0(p) + dt*vs
-               end do
-               !$omp simd private(p)
-               do k = 0, 2, 2
-                  p = 2 + 4*b + k
+               do k = 0, 6, 2
+                  p = 2 + 8*b + k
                   sn(p) = u0(p) + u2(p)
                   sn(p + 1) = u0(p + 1) + u2(p + 1)
                   en(p) = u2(p + 1) - u0(p + 1)
@@ -480,27 +462,27 @@ contains
             end do
          end if
          ! the next row's sums at the positions the blocks left out
-         do k = -1, (n - 2 - 4*nb)/2 - 1   ! p = 0, then 2 + 4 nb .. n - 2
-            p = merge(0, 2 + 4*nb + 2*k, k < 0)
+         do k = -1, (n - 2 - 8*nb)/2 - 1   ! p = 0, then 2 + 8 nb .. n - 2
+            p = merge(0, 2 + 8*nb + 2*k, k < 0)
             sn(p) = u0(p) + u2(p)
             sn(p + 1) = u0(p + 1) + u2(p + 1)
             en(p) = u2(p + 1) - u0(p + 1)
             en(p + 1) = u2(p) - u0(p)
          end do
-         do p = 2 + 4*nb, n - 3
+         do p = 2 + 8*nb, n - 3
             l = mod(p, 2)
             f(p) = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
                     + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
                    + q(l, 5)*(eb(p + 2) - eb(p - 2))
          end do
-         do l = 0, 3
-            ek = ek + ek4(l)
-            es = es + es4(l)
-            ea = ea + ea4(l)
+         do l = 0, nl - 1
+            ek = ek + ekl(l)
+            es = es + esl(l)
+            ea = ea + eal(l)
          end do
          ! the outputs left over: the end nodes (K u above) and those after the blocks
          call tail_update(0, 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
-         call tail_update(2 + 4*nb, n - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
+         call tail_update(2 + 8*nb, n - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
       else
          call tail_update(0, n - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
       end if
