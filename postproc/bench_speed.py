@@ -40,6 +40,7 @@ Issue 13 figures (each section can be chosen with --sections):
 """
 import argparse
 import json
+import os
 import statistics
 
 import numpy as np
@@ -370,6 +371,26 @@ def section_static(exe, out, levels, threads):
           "steps with/without mass scaling on it in the 'mass' section", flush=True)
 
 
+def machine_line():
+    """The CPU the figures come from (figures of two CPUs do not compare: docs/performance.md)."""
+    info = {}
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            key, _, val = line.partition(":")
+            info.setdefault(key.strip(), val.strip())
+    except OSError:
+        return "machine: /proc/cpuinfo not readable"
+    flags = info.get("flags", "").split()
+    vec = "AVX-512" if "avx512f" in flags else ("AVX2" if "avx2" in flags else "no AVX2")
+    load = ""
+    try:
+        load = ", load average " + Path("/proc/loadavg").read_text().split()[0]
+    except OSError:
+        pass
+    return (f"machine: {info.get('model name', '?')}, family {info.get('cpu family', '?')} model "
+            f"{info.get('model', '?')}, {vec}, {os.cpu_count()} CPUs{load}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--exe", help="contact2d executable (default build/bin/contact2d)")
@@ -388,6 +409,7 @@ def main():
     ap.add_argument("--tresca-threshold", type=float, default=200.0,
                     help="Tresca threshold [MPa] of the mass section's friction variant (default 200)")
     args = ap.parse_args()
+    print(machine_line(), flush=True)
     exe = find_exe(args.exe)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
