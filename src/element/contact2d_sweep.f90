@@ -364,8 +364,9 @@ contains
    !> otherwise). The difference row is kept with x and y swapped, E(p) = D(p xor 1), so that the
    !> last term is C (E(p + 2) - E(p - 2)) on either parity: 6 multiply-adds and 8 loads per
    !> output instead of 21 and 21. Blocks of eight outputs: one vector of eight lanes of partial
-   !> sums with AVX-512, else two blocks of four in a vector of four lanes (sweep_lanes), so
-   !> that coefficients and sums stay in registers. cbm = cb M^-1 of the row.
+   !> sums when the build's flags give 512-bit vectors, else two groups in a vector of four lanes
+   !> (sweep_lanes, contact2d_simd_config), so that coefficients and sums stay in registers.
+   !> cbm = cb M^-1 of the row.
    subroutine grid_row_sym(n, um, u0, up, u2, f, q, e, sb, eb, sn, en, have, v, m, cbm, ca, dt, w, part, full)
       integer, intent(in) :: n
       real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 5)
@@ -406,7 +407,7 @@ contains
          nb = (n - 4)/8
          if (full) then
             do b = 0, nb - 1
-               !$omp simd private(p, fp, vo, vs, wn)
+               !$omp simd private(p, i, fp, vo, vs, wn)
                do l = 0, nl - 1
                   do i = 0, nu - 1
                      p = 2 + 8*b + nl*i + l
@@ -436,7 +437,7 @@ contains
          else
             ! the same without f and the u~ . f sum
             do b = 0, nb - 1
-               !$omp simd private(p, fp, vo, vs)
+               !$omp simd private(p, i, fp, vo, vs)
                do l = 0, nl - 1
                   do i = 0, nu - 1
                      p = 2 + 8*b + nl*i + l
