@@ -1,5 +1,5 @@
 ! Compiled (to assembly only) at configure time with the build's flags: does the compiler put a
-! loop of eight lanes in one 512-bit register? (CMakeLists.txt, contact2d_simd_config)
+! loop of eight lanes in one 512-bit register? (CMakeLists.txt, contact2d_build_config)
 subroutine contact2d_simd_probe(x, a, y)
    implicit none
    real(kind(1.0d0)), intent(in) :: x(0:7), a(0:7)

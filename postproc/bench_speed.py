@@ -411,6 +411,11 @@ def main():
     args = ap.parse_args()
     print(machine_line(), flush=True)
     exe = find_exe(args.exe)
+    for tag, e in (("build", exe), ("base build", args.base_exe)):
+        if e:
+            # the second line of `contact2d --version`: compiler, flags, the sweep's lanes
+            lines = subprocess.run([str(e), "--version"], stdout=subprocess.PIPE, text=True).stdout.splitlines()
+            print(f"{tag}: {lines[1] if len(lines) > 1 else '(no build line: an older binary)'}", flush=True)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     sections = set(args.sections.split(","))

@@ -1,7 +1,7 @@
 !> The driver: command line -> deck -> model -> time loop -> HDF5, progress and summary.
 !> Only this module stops the program (exit 1: bad input or usage, exit 2: the run failed).
 module contact2d_driver
-   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+   use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, compiler_version
    use contact2d_kinds, only: wp, i8
    use contact2d_version, only: program_name, program_version
    use contact2d_strings, only: str, fixed, sci
@@ -15,6 +15,7 @@ module contact2d_driver
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use contact2d_threads, only: thread_tuner_t
    use contact2d_stiffness, only: omp_min_nodes
+   use contact2d_build_config, only: sweep_lanes, build_flags
    use contact2d_static_run, only: static_run, static_distance, summary_contact_status
    use contact2d_initial, only: initial_velocity_apply, initial_velocity_warning
    implicit none
@@ -69,6 +70,9 @@ contains
       end if
       if (cli%version) then
          write (output_unit, '(a)') program_name//' '//program_version
+         ! the build, so that a timing can be told apart from another build's (docs/deck.md)
+         write (output_unit, '(a)') 'built with '//compiler_version()//', '//build_flags// &
+            '; the sweep''s inside rows use '//str(sweep_lanes)//' lanes'
          stop
       end if
 

@@ -32,7 +32,7 @@ module contact2d_sweep
    use contact2d_kinds, only: wp
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    use contact2d_rows, only: rows_t
-   use contact2d_simd_config, only: sweep_lanes
+   use contact2d_build_config, only: sweep_lanes
    use omp_lib, only: omp_get_max_threads, omp_get_num_procs, omp_get_thread_num
    implicit none
    private
@@ -365,7 +365,7 @@ contains
    !> last term is C (E(p + 2) - E(p - 2)) on either parity: 6 multiply-adds and 8 loads per
    !> output instead of 21 and 21. Blocks of eight outputs: one vector of eight lanes of partial
    !> sums when the build's flags give 512-bit vectors, else two groups in a vector of four lanes
-   !> (sweep_lanes, contact2d_simd_config), so that coefficients and sums stay in registers.
+   !> (sweep_lanes, contact2d_build_config), so that coefficients and sums stay in registers.
    !> cbm = cb M^-1 of the row.
    subroutine grid_row_sym(n, um, u0, up, u2, f, q, e, sb, eb, sn, en, have, v, m, cbm, ca, dt, w, part, full)
       integer, intent(in) :: n
@@ -403,7 +403,7 @@ contains
          esl = 0
          eal = 0
          ! outputs p = 2 .. n - 3 by blocks of eight, nu groups of nl lanes (lane l has the parity
-         ! of l; contact2d_simd_config)
+         ! of l; contact2d_build_config)
          nb = (n - 4)/8
          if (full) then
             do b = 0, nb - 1
