@@ -341,7 +341,7 @@ contains
       real(wp), intent(in), optional :: extra(:, :)
       real(wp) :: omega2
       real(wp), allocatable :: x(:, :), y(:, :)
-      real(wp) :: xmx, xy, ymy, y1, y2
+      real(wp) :: xmx, xy, ymy, ynorm, y1, y2
       integer :: it, i
 
       allocate (x, mold=free)
@@ -373,11 +373,11 @@ contains
             y(2, i) = y2
          end do
          omega2 = xy/xmx
-         ymy = sqrt(ymy)
+         ynorm = sqrt(ymy)
          !$omp simd
          do i = 1, size(x, 2)
-            x(1, i) = y(1, i)/ymy
-            x(2, i) = y(2, i)/ymy
+            x(1, i) = y(1, i)/ynorm
+            x(2, i) = y(2, i)/ynorm
          end do
       end do
    end function stiffness_power_omega2

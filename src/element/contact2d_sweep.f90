@@ -436,7 +436,8 @@ contains
             end do
          else
             ! the same without f and the u~ . f sum (written twice on purpose: one loop with
-            ! `if (full)` inside ran 3x slower, docs/performance.md "512-bit lanes")
+            ! `if (full)` inside ran 3x slower, one block loop branching per block to the two
+            ! lane loops 0.85-0.93x, docs/performance.md "512-bit lanes")
             do b = 0, nb - 1
                !$omp simd private(p, i, fp, vo, vs)
                do l = 0, nl - 1
