@@ -36,7 +36,7 @@ contains
       type(cli_t) :: cli
       type(deck_t) :: deck
       type(model_t) :: model
-      type(explicit_t) :: solver
+      type(explicit_t), target :: solver
       type(output_t) :: out
       character(len=:), allocatable :: errmsg, status
       integer :: stat, i, nstep, isnap

@@ -35,7 +35,7 @@ contains
       character(len=*), intent(in), optional :: sidecar, target
       logical, intent(out), optional :: written
       type(static_t) :: st
-      type(explicit_t) :: state
+      type(explicit_t), target :: state
       type(output_t) :: out
       integer :: k, nk, stat, i
       integer(i8) :: clock1, rate

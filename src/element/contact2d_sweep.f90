@@ -27,12 +27,15 @@
 !> follow the pattern keeps one class per row. Other meshes use the fixed-width block rows of
 !> contact2d_rows (with per-dof masses). Sums are per grid row (or per fixed chunk of block
 !> rows) and added in order by the caller, so the bits do not depend on the number of threads or
-!> on how rows are shared among them.
+!> on how rows are shared among them. Inside rows start their vector blocks where u starts a
+!> cache line (grid_row_sym): the bits of the sums depend on where u sits in memory, which
+!> contact2d_explicit fixes (each of its arrays starts a line).
 module contact2d_sweep
    use contact2d_kinds, only: wp
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    use contact2d_rows, only: rows_t
    use contact2d_build_config, only: sweep_lanes
+   use contact2d_align, only: line_reals, line_slot, line_skip
    use omp_lib, only: omp_get_max_threads, omp_get_num_procs, omp_get_thread_num
    implicit none
    private
@@ -54,13 +57,23 @@ module contact2d_sweep
       logical :: sym = .false.
       real(wp) :: qs(0:7, 5) = 0
       !> per thread, the sum and difference rows of grid_row_sym for two consecutive rows (this
-      !> row's and the next one's, formed in this row's loop), (0:2 (nx + 1) - 1, 4, 0:nscr - 1)
+      !> row's and the next one's, formed in this row's loop), (0:nrow - 1, 4, 0:nscr - 1) with
+      !> nrow = 2 (nx + 1) rounded up to whole lines, plus a line: each row starts where its
+      !> grid row's first value sits in its line (sweep_grid)
       real(wp), allocatable :: scr(:, :, :)
+      integer, allocatable :: sslot(:, :)   !< place in its line of scr(0, k, t) (4, 0:nscr - 1)
       integer :: nscr = 0
       !> per-dof masses and inverses of each class of grid row, (2 (nx + 1), nclass) [t], [1/t]
       real(wp), allocatable :: rmass(:, :), rminv(:, :)
       !> cb rminv for the cb of cb_last (formed again when cb changes: the damping) [s/t]
       real(wp), allocatable :: rcbm(:, :)
+      !> rmass and rcbm again, aligned like the grid rows that use them (the inside rows of
+      !> grid_row_sym): copy(s, c) is the index in amc(:, 1) (masses) and amc(:, 2) (cb M^-1) of
+      !> the first value of the copy of class c whose first value sits at place s of a line
+      !> (contact2d_align), formed for the places of the rows of class c when u starts a line
+      !> (contact2d_explicit); 0 where none
+      real(wp), allocatable :: amc(:, :)
+      integer, allocatable :: copy(:, :)
       real(wp) :: cb_last = -1
       integer, allocatable :: rclass(:)           !< class of each grid row (0:ny)
       type(rows_t) :: rows                        !< block rows and masses (general meshes)
@@ -78,7 +91,7 @@ contains
       class(sweep_t), intent(out) :: this
       type(stiffness_t), intent(in) :: stiff
       real(wp), allocatable :: mrow(:, :)
-      integer :: j, n, nx, ny, rep(3)
+      integer :: j, n, nx, ny, rep(3), t, k
       logical :: uniform
       this%structured = stiff%structured
       if (.not. stiff%structured) then
@@ -98,8 +111,14 @@ contains
       call symmetric_coefficients(this%s(:, :, :, :, 2, 2), this%sym, this%qs)
       ! (allocated even when unused: it is passed to sweep_grid)
       this%nscr = max(omp_get_max_threads(), omp_get_num_procs())
-      allocate (this%scr(0:n - 1, 4, 0:this%nscr - 1))
+      allocate (this%scr(0:line_reals*((n + line_reals - 1)/line_reals) + line_reals - 1, 4, 0:this%nscr - 1))
       this%scr = 0
+      allocate (this%sslot(4, 0:this%nscr - 1))
+      do t = 0, this%nscr - 1
+         do k = 1, 4
+            this%sslot(k, t) = line_slot(this%scr(0, k, t))
+         end do
+      end do
       ! per-dof masses of every row; the class of row j is its row type (1 bottom, 2 inside, 3 top)
       mrow = reshape(spread(stiff%mass, 1, 2), [n, ny + 1])
       allocate (this%rclass(0:ny))
@@ -120,8 +139,52 @@ contains
       this%rminv = 1/this%rmass
       this%rcbm = this%rminv
       this%cb_last = -1
+      call aligned_copies(this, n)
       allocate (this%partial(4, ny + 1))
    end subroutine sweep_init
+
+   !> The aligned copies of the row masses (amc, copy of sweep_t) for the places in a line of the
+   !> grid rows of each class when u starts a line, and of cb M^-1 for the cb of rcbm.
+   subroutine aligned_copies(this, n)
+      type(sweep_t), intent(inout) :: this
+      integer, intent(in) :: n
+      integer :: j, c, s, ncopy, len, o
+      allocate (this%copy(0:line_reals - 1, size(this%rmass, 2)))
+      this%copy = 0
+      do j = 1, this%ny - 1   ! the inside rows
+         this%copy(mod(j*n, line_reals), this%rclass(j)) = 1
+      end do
+      ncopy = count(this%copy > 0)
+      ! each copy in its own stretch of whole lines (len reals), starting at its place s; whole
+      ! lines per column, so that both columns are placed alike
+      len = line_reals*((n + line_reals - 1)/line_reals + 1)
+      allocate (this%amc((ncopy + 1)*len, 2))
+      this%amc = 0
+      o = line_skip(this%amc(1, 1))
+      ncopy = 0
+      do c = 1, size(this%rmass, 2)
+         do s = 0, line_reals - 1
+            if (this%copy(s, c) == 0) cycle
+            this%copy(s, c) = o + ncopy*len + 1 + s
+            ncopy = ncopy + 1
+         end do
+      end do
+      call fill_copies(this%copy, this%rmass, this%amc(:, 1))
+      call fill_copies(this%copy, this%rcbm, this%amc(:, 2))
+   end subroutine aligned_copies
+
+   !> The copies of the rows of r (one per class) at the places of copy (aligned_copies).
+   subroutine fill_copies(copy, r, a)
+      integer, intent(in) :: copy(0:, :)
+      real(wp), intent(in) :: r(:, :)
+      real(wp), intent(inout) :: a(:)
+      integer :: c, s
+      do c = 1, size(copy, 2)
+         do s = 0, size(copy, 1) - 1
+            if (copy(s, c) > 0) a(copy(s, c):copy(s, c) + size(r, 1) - 1) = r(:, c)
+         end do
+      end do
+   end subroutine fill_copies
 
    pure integer function row_type(j, ny)
       integer, intent(in) :: j, ny
@@ -174,10 +237,11 @@ contains
          if (cb /= this%cb_last) then
             this%rcbm = cb*this%rminv
             this%cb_last = cb
+            call fill_copies(this%copy, this%rcbm, this%amc(:, 2))
          end if
          call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, &
                          u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
-                         this%scr, this%nscr, all_out)
+                         this%scr, this%sslot, this%nscr, all_out, this%amc, this%copy)
       else
          call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial, all_out)
       end if
@@ -199,7 +263,7 @@ contains
    end function sweep_kept
 
    subroutine sweep_grid(nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, par, sym, qs, &
-                         scr, nscr, full)
+                         scr, sslot, nscr, full, amc, copy)
       integer, intent(in) :: nx, ny
       real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
       ! (contiguous: the rows passed on need no contiguity test or packing per row)
@@ -213,7 +277,10 @@ contains
       real(wp), intent(in) :: qs(0:7, 5)
       integer, intent(in) :: nscr
       real(wp), intent(inout) :: scr(0:, :, 0:)
-      integer :: j, rt, t, jmade, k, kn
+      integer, intent(in) :: sslot(:, 0:)
+      real(wp), intent(in) :: amc(:, :)
+      integer, intent(in) :: copy(0:, :)
+      integer :: j, rt, t, jmade, k, kn, s0, s1, h, c, i0, d(4), ubase
       ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it).
       ! Static rows: each thread keeps the same block of rows every step, so they stay in its own
       ! cache (with dynamic sharing rows moved between cores: one thread took 0.67 s for half the
@@ -223,7 +290,10 @@ contains
       ! slots 3 - k, 4 - k); jmade is the row they were formed for (one thread's rows are
       ! consecutive: only its first inside row forms its own)
       jmade = -1
-      !$omp parallel do schedule(static) if(par) private(rt, t, k, kn) firstprivate(jmade) &
+      ! where u starts in its line (aligned blocks, below)
+      ubase = line_slot(u(1, 0, 0))
+      !$omp parallel do schedule(static) if(par) private(rt, t, k, kn, s0, s1, h, c, i0, d) &
+      !$omp firstprivate(jmade) &
       !$omp num_threads(max(1, min(omp_get_max_threads(), nscr)))
       do j = 0, ny
          rt = row_type(j, ny)
@@ -232,10 +302,24 @@ contains
             k = 2*mod(j, 2) + 1
             kn = 4 - k
             ! (the last inside row forms nothing that is used: row j + 1 stands for j + 2)
+            ! aligned blocks (grid_row_sym): where rows j and j + 1 start in their lines, the
+            ! scratch rows placed alike, the masses' copy for row j's place (any copy will do
+            ! when u does not start a line: the same values, only slower)
+            s0 = mod(ubase + j*2*(nx + 1), line_reals)
+            s1 = mod(s0 + 2*(nx + 1), line_reals)
+            d(1) = modulo(s0 - sslot(k, t), line_reals)
+            d(2) = modulo(s0 - sslot(k + 1, t), line_reals)
+            d(3) = modulo(s1 - sslot(kn, t), line_reals)
+            d(4) = modulo(s1 - sslot(kn + 1, t), line_reals)
+            h = modulo(-s0 - 2, line_reals)
+            h = h - mod(h, 2)
+            c = rclass(j)
+            i0 = copy(s0, c)
+            if (i0 == 0) i0 = maxval(copy(:, c))
             call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), u(1, 0, min(j + 2, ny)), &
-                              f(1, 0, j), qs, e(1, 1, -1, 1, rt), scr(:, k, t), scr(:, k + 1, t), &
-                              scr(:, kn, t), scr(:, kn + 1, t), jmade == j, v(1, 0, j), rmass(:, rclass(j)), &
-                              rcbm(:, rclass(j)), ca, dt, w(1, 0, j), partial(1, j), full)
+                              f(1, 0, j), qs, e(1, 1, -1, 1, rt), scr(d(1):, k, t), scr(d(2):, k + 1, t), &
+                              scr(d(3):, kn, t), scr(d(4):, kn + 1, t), jmade == j, v(1, 0, j), amc(i0:, 1), &
+                              amc(i0:, 2), ca, dt, w(1, 0, j), partial(1, j), full, h)
             jmade = j + 1
          else
             call grid_row(2*(nx + 1), u(1, 0, max(j - 1, 0)), u(1, 0, j), u(1, 0, min(j + 1, ny)), f(1, 0, j), &
@@ -367,7 +451,15 @@ contains
    !> sums when the build's flags give 512-bit vectors, else two groups in a vector of four lanes
    !> (sweep_lanes, contact2d_build_config), so that coefficients and sums stay in registers.
    !> cbm = cb M^-1 of the row.
-   subroutine grid_row_sym(n, um, u0, up, u2, f, q, e, sb, eb, sn, en, have, v, m, cbm, ca, dt, w, part, full)
+   !>
+   !> Aligned blocks (docs/performance.md "Aligned blocks"): the blocks start at output 2 + h,
+   !> where u0 starts a 64-byte line, and the caller places v, w, f, m, cbm, sb and eb alike, so
+   !> that their vector loads and stores of eight values read one line, not two (the loads at
+   !> p -+ 2 still read two). The outputs before and after the blocks go one by one. Which outputs
+   !> go by blocks, and so the order of the energy sums' terms, depends on h, i.e. on where u sits
+   !> in memory: contact2d_explicit keeps u on a line, so that h is a function of the row and
+   !> of nx only and the bits do not change from run to run or with the thread count.
+   subroutine grid_row_sym(n, um, u0, up, u2, f, q, e, sb, eb, sn, en, have, v, m, cbm, ca, dt, w, part, full, h)
       integer, intent(in) :: n
       real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 5)
       real(wp), intent(in) :: u2(0:n - 1)        !< row j + 2 (for the next row's sb, eb)
@@ -380,8 +472,9 @@ contains
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
       logical, intent(in) :: full   !< store f and form the u~ . f sum at the interior outputs
+      integer, intent(in) :: h      !< the blocks start at output 2 + h (0, 2, 4 or 6)
       integer, parameter :: nl = sweep_lanes, nu = 8/sweep_lanes   !< lanes, groups per block
-      integer :: b, l, p, nb, k, i
+      integer :: b, l, p, nb, pa, k, i
       real(wp) :: fp, vo, vs, wn, ek, es, ea, ekl(0:nl - 1), esl(0:nl - 1), eal(0:nl - 1)
       ! (array elements for the explicit-shape dummies: no temporaries)
       call end_node(e(1, 1, -1, 1), um(0), u0(0), up(0), f(0))
@@ -399,18 +492,20 @@ contains
                eb(p + 1) = up(p) - um(p)
             end do
          end if
+         ! outputs pa .. pa + 8 nb - 1 by blocks of eight, nu groups of nl lanes (lane l has the
+         ! parity of l; contact2d_build_config); the others one by one
+         pa = 2 + h
+         nb = max(0, (n - 2 - pa)/8)
+         if (nb == 0) pa = 2
          ekl = 0
          esl = 0
          eal = 0
-         ! outputs p = 2 .. n - 3 by blocks of eight, nu groups of nl lanes (lane l has the parity
-         ! of l; contact2d_build_config)
-         nb = (n - 4)/8
          if (full) then
             do b = 0, nb - 1
                !$omp simd private(p, i, fp, vo, vs, wn)
                do l = 0, nl - 1
                   do i = 0, nu - 1
-                     p = 2 + 8*b + nl*i + l
+                     p = pa + 8*b + nl*i + l
                      fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
                            + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
                           + q(l, 5)*(eb(p + 2) - eb(p - 2))
@@ -427,7 +522,7 @@ contains
                end do
                !$omp simd private(p)
                do k = 0, 6, 2
-                  p = 2 + 8*b + k
+                  p = pa + 8*b + k
                   sn(p) = u0(p) + u2(p)
                   sn(p + 1) = u0(p + 1) + u2(p + 1)
                   en(p) = u2(p + 1) - u0(p + 1)
@@ -442,7 +537,7 @@ contains
                !$omp simd private(p, i, fp, vo, vs)
                do l = 0, nl - 1
                   do i = 0, nu - 1
-                     p = 2 + 8*b + nl*i + l
+                     p = pa + 8*b + nl*i + l
                      fp = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
                            + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
                           + q(l, 5)*(eb(p + 2) - eb(p - 2))
@@ -456,7 +551,7 @@ contains
                end do
                !$omp simd private(p)
                do k = 0, 6, 2
-                  p = 2 + 8*b + k
+                  p = pa + 8*b + k
                   sn(p) = u0(p) + u2(p)
                   sn(p + 1) = u0(p + 1) + u2(p + 1)
                   en(p) = u2(p + 1) - u0(p + 1)
@@ -464,15 +559,18 @@ contains
                end do
             end do
          end if
-         ! the next row's sums at the positions the blocks left out
-         do k = -1, (n - 2 - 8*nb)/2 - 1   ! p = 0, then 2 + 8 nb .. n - 2
-            p = merge(0, 2 + 8*nb + 2*k, k < 0)
+         ! the next row's sums at the positions the blocks left out: 0, 2 .. pa - 2 and
+         ! pa + 8 nb .. n - 2
+         do k = -1, (n - 2 - 8*nb)/2 - 1
+            p = merge(0, merge(2 + 2*k, 8*nb + 2 + 2*k, 2 + 2*k < pa), k < 0)
             sn(p) = u0(p) + u2(p)
             sn(p + 1) = u0(p + 1) + u2(p + 1)
             en(p) = u2(p + 1) - u0(p + 1)
             en(p + 1) = u2(p) - u0(p)
          end do
-         do p = 2 + 8*nb, n - 3
+         ! K u at the outputs the blocks left out: 2 .. pa - 1 and pa + 8 nb .. n - 3
+         do k = 0, n - 5 - 8*nb
+            p = merge(2 + k, 8*nb + 2 + k, 2 + k < pa)
             l = mod(p, 2)
             f(p) = ((q(l, 1)*u0(p) + q(l, 2)*(u0(p - 2) + u0(p + 2))) &
                     + (q(l, 3)*sb(p) + q(l, 4)*(sb(p - 2) + sb(p + 2)))) &
@@ -483,9 +581,9 @@ contains
             es = es + esl(l)
             ea = ea + eal(l)
          end do
-         ! the outputs left over: the end nodes (K u above) and those after the blocks
-         call tail_update(0, 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
-         call tail_update(2 + 8*nb, n - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
+         ! the outputs left over: the end nodes (K u above) and those before and after the blocks
+         call tail_update(0, pa - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
+         call tail_update(pa + 8*nb, n - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
       else
          call tail_update(0, n - 1, n, u0, v, f, m, cbm, ca, dt, w, ek, es, ea)
       end if

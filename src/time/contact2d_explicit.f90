@@ -15,6 +15,7 @@ module contact2d_explicit
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use, intrinsic :: iso_fortran_env, only: int8
    use contact2d_kinds, only: wp, i8
+   use contact2d_align, only: line_reals, line_skip
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
    use contact2d_loading, only: loading_t
    use contact2d_contact, only: contact_t
@@ -49,9 +50,16 @@ module contact2d_explicit
       integer :: damping_interval = 20     !< steps between omega_1 estimates (auto)
       integer(i8) :: step = 0              !< steps done
       real(wp) :: time = 0                 !< t_n [s]
-      real(wp), allocatable :: u(:, :)     !< u^n [mm]
-      real(wp), allocatable :: v(:, :)     !< v^(n-1/2) [mm/s]
-      real(wp), allocatable :: unew(:, :)  !< u~, then u^(n+1) [mm]
+      !> u, v, unew and fint: views of one allocation (the store), each starting on a 64-byte
+      !> line, so that the sweep's rows of all four are aligned alike and its blocks start at
+      !> the same outputs in every run (contact2d_align, contact2d_sweep); u and unew are swapped
+      !> by pointer after each step. So an explicit_t is declared with the target attribute (its
+      !> views point into itself) and never copied by assignment (the copy's views would point
+      !> into the original).
+      real(wp), allocatable :: store(:)
+      real(wp), pointer, contiguous :: u(:, :) => null()     !< u^n [mm]
+      real(wp), pointer, contiguous :: v(:, :) => null()     !< v^(n-1/2) [mm/s]
+      real(wp), pointer, contiguous :: unew(:, :) => null()  !< u~, then u^(n+1) [mm]
       type(sweep_t) :: sweep               !< K u, predictor and energy sums in one pass
       !> dofs whose u~ changes after the sweep (loads, prescribed, contact nodes), as indices of
       !> the flattened (2 nnode) arrays, and their v^(n-1/2), v* and u~ of the current step; set
@@ -69,7 +77,7 @@ module contact2d_explicit
       integer :: s_ncontact = -1           !< contact nodes when sdof was built
       !> a listed dof where the sweep does not always store K u: every sweep is then full
       logical :: s_interior = .false.
-      real(wp), allocatable :: fint(:, :)  !< K u^n of the last step [N]
+      real(wp), pointer, contiguous :: fint(:, :) => null()  !< K u^n of the last step [N]
       real(wp), allocatable :: fext(:, :)  !< f_ext(t_n) of the last step [N]
       real(wp), allocatable :: fc(:, :)    !< contact force on the body of the last step [N]
       real(wp), allocatable :: mass(:)     !< lumped mass [t]
@@ -124,12 +132,12 @@ contains
 
    !> Zero state; damping mode and value; the elements touching prescribed dofs.
    subroutine explicit_init(this, stiff, load, dt, damping, alpha, damping_interval)
-      class(explicit_t), intent(out) :: this
+      class(explicit_t), intent(out), target :: this
       type(stiffness_t), intent(in) :: stiff
       type(loading_t), intent(in) :: load
       real(wp), intent(in) :: dt, alpha
       integer, intent(in) :: damping, damping_interval
-      integer :: nnode, e, a, n
+      integer :: nnode, e, a, n, len, o
       logical, allocatable :: touches(:), mark(:, :)
 
       nnode = size(stiff%mass)
@@ -139,8 +147,15 @@ contains
       this%alpha = merge(alpha, 0.0_wp, damping == damping_given)
       this%alpha_next = this%alpha
       this%damping_interval = damping_interval
-      allocate (this%u(2, nnode), this%v(2, nnode), this%unew(2, nnode), this%fint(2, nnode), &
-                this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode))
+      ! the four views of the store, each 2 nnode reals rounded up to whole lines
+      len = line_reals*((2*nnode + line_reals - 1)/line_reals)
+      allocate (this%store(4*len + line_reals - 1))
+      o = line_skip(this%store(1))
+      this%u(1:2, 1:nnode) => this%store(o + 1:o + 2*nnode)
+      this%v(1:2, 1:nnode) => this%store(o + len + 1:o + len + 2*nnode)
+      this%unew(1:2, 1:nnode) => this%store(o + 2*len + 1:o + 2*len + 2*nnode)
+      this%fint(1:2, 1:nnode) => this%store(o + 3*len + 1:o + 3*len + 2*nnode)
+      allocate (this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode))
       this%u = 0; this%v = 0; this%unew = 0; this%fint = 0; this%fext = 0; this%fc = 0
       call this%sweep%init(stiff)
       this%mass = stiff%mass
@@ -187,7 +202,7 @@ contains
       integer :: k, p, node, comp
       real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, workt, f, corr(4)
       logical :: full
-      real(wp), allocatable :: swap(:, :)
+      real(wp), pointer, contiguous :: swap(:, :)
 
       ! set-up, outside the step loop: the dofs that change after the sweep
       if (.not. allocated(this%sdof) .or. this%s_ncontact /= merge(contact%nc, 0, contact%active)) &
@@ -255,9 +270,9 @@ contains
          this%work_in = this%work_in + abs(work)
          call add_energies(this, this%sweep%partial, corr, this%alpha, dt, full)
          ! u^(n+1) becomes u (the arrays are swapped, not copied)
-         call move_alloc(this%u, swap)
-         call move_alloc(this%unew, this%u)
-         call move_alloc(swap, this%unew)
+         swap => this%u
+         this%u => this%unew
+         this%unew => swap
          this%step = this%step + 1
          this%time = this%time0 + real(this%step - this%step0, wp)*dt
          ! blow-up guard: runaway kinetic energy or non-finite values
