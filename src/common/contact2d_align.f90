@@ -1,8 +1,9 @@
 !> Where an array element sits in its 64-byte cache line (issue 13, docs/performance.md
 !> "Aligned blocks"). A vector load of eight reals that starts on a line reads one line, one
-!> that starts elsewhere two; the sweep starts its blocks on a line, and the integrator keeps its
-!> per-node arrays on lines so that every array of a row is aligned alike. Alignment only
-!> changes speed: no result depends on it.
+!> that starts elsewhere two; the integrator keeps its per-node arrays on lines, and the sweep
+!> starts its blocks where a row of them starts a line and places its row-sized arrays alike.
+!> Where the arrays are only changes speed: no result depends on it (the sweep chooses its
+!> blocks from the mesh, not from addresses).
 module contact2d_align
    use, intrinsic :: iso_c_binding, only: c_loc, c_intptr_t
    use contact2d_kinds, only: wp

@@ -28,8 +28,8 @@
 !> contact2d_rows (with per-dof masses). Sums are per grid row (or per fixed chunk of block
 !> rows) and added in order by the caller, so the bits do not depend on the number of threads or
 !> on how rows are shared among them. Inside rows start their vector blocks where u starts a
-!> cache line (grid_row_sym): the bits of the sums depend on where u sits in memory, which
-!> contact2d_explicit fixes (each of its arrays starts a line).
+!> cache line when u itself starts one, as contact2d_explicit keeps it (grid_row_sym); which
+!> outputs go by blocks is set by the mesh alone, so neither do the bits depend on where u is.
 module contact2d_sweep
    use contact2d_kinds, only: wp
    use contact2d_stiffness, only: stiffness_t, omp_min_nodes
@@ -61,7 +61,8 @@ module contact2d_sweep
       !> nrow = 2 (nx + 1) rounded up to whole lines, plus a line: each row starts where its
       !> grid row's first value sits in its line (sweep_grid)
       real(wp), allocatable :: scr(:, :, :)
-      integer, allocatable :: sslot(:, :)   !< place in its line of scr(0, k, t) (4, 0:nscr - 1)
+      !> place in its line of scr(0, 1, 0), and so of every scr(0, k, t) (whole lines apart)
+      integer :: scr_slot = 0
       integer :: nscr = 0
       !> per-dof masses and inverses of each class of grid row, (2 (nx + 1), nclass) [t], [1/t]
       real(wp), allocatable :: rmass(:, :), rminv(:, :)
@@ -91,7 +92,7 @@ contains
       class(sweep_t), intent(out) :: this
       type(stiffness_t), intent(in) :: stiff
       real(wp), allocatable :: mrow(:, :)
-      integer :: j, n, nx, ny, rep(3), t, k
+      integer :: j, n, nx, ny, rep(3)
       logical :: uniform
       this%structured = stiff%structured
       if (.not. stiff%structured) then
@@ -113,12 +114,7 @@ contains
       this%nscr = max(omp_get_max_threads(), omp_get_num_procs())
       allocate (this%scr(0:line_reals*((n + line_reals - 1)/line_reals) + line_reals - 1, 4, 0:this%nscr - 1))
       this%scr = 0
-      allocate (this%sslot(4, 0:this%nscr - 1))
-      do t = 0, this%nscr - 1
-         do k = 1, 4
-            this%sslot(k, t) = line_slot(this%scr(0, k, t))
-         end do
-      end do
+      this%scr_slot = line_slot(this%scr(0, 1, 0))
       ! per-dof masses of every row; the class of row j is its row type (1 bottom, 2 inside, 3 top)
       mrow = reshape(spread(stiff%mass, 1, 2), [n, ny + 1])
       allocate (this%rclass(0:ny))
@@ -241,7 +237,7 @@ contains
          end if
          call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, &
                          u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
-                         this%scr, this%sslot, this%nscr, all_out, this%amc, this%copy)
+                         this%scr, this%scr_slot, this%nscr, all_out, this%amc, this%copy)
       else
          call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial, all_out)
       end if
@@ -263,7 +259,7 @@ contains
    end function sweep_kept
 
    subroutine sweep_grid(nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, par, sym, qs, &
-                         scr, sslot, nscr, full, amc, copy)
+                         scr, scr_slot, nscr, full, amc, copy)
       integer, intent(in) :: nx, ny
       real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
       ! (contiguous: the rows passed on need no contiguity test or packing per row)
@@ -276,11 +272,11 @@ contains
       real(wp), intent(inout) :: partial(4, 0:ny)
       real(wp), intent(in) :: qs(0:7, 5)
       integer, intent(in) :: nscr
-      real(wp), intent(inout) :: scr(0:, :, 0:)
-      integer, intent(in) :: sslot(:, 0:)
-      real(wp), intent(in) :: amc(:, :)
+      real(wp), intent(inout), contiguous :: scr(0:, :, 0:)
+      integer, intent(in) :: scr_slot
+      real(wp), intent(in), contiguous :: amc(:, :)
       integer, intent(in) :: copy(0:, :)
-      integer :: j, rt, t, jmade, k, kn, s0, s1, h, c, i0, d(4), ubase
+      integer :: j, rt, t, jmade, k, kn, s0, s1, h, c, i0, d0, d1
       ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it).
       ! Static rows: each thread keeps the same block of rows every step, so they stay in its own
       ! cache (with dynamic sharing rows moved between cores: one thread took 0.67 s for half the
@@ -290,9 +286,7 @@ contains
       ! slots 3 - k, 4 - k); jmade is the row they were formed for (one thread's rows are
       ! consecutive: only its first inside row forms its own)
       jmade = -1
-      ! where u starts in its line (aligned blocks, below)
-      ubase = line_slot(u(1, 0, 0))
-      !$omp parallel do schedule(static) if(par) private(rt, t, k, kn, s0, s1, h, c, i0, d) &
+      !$omp parallel do schedule(static) if(par) private(rt, t, k, kn, s0, s1, h, c, i0, d0, d1) &
       !$omp firstprivate(jmade) &
       !$omp num_threads(max(1, min(omp_get_max_threads(), nscr)))
       do j = 0, ny
@@ -302,23 +296,22 @@ contains
             k = 2*mod(j, 2) + 1
             kn = 4 - k
             ! (the last inside row forms nothing that is used: row j + 1 stands for j + 2)
-            ! aligned blocks (grid_row_sym): where rows j and j + 1 start in their lines, the
-            ! scratch rows placed alike, the masses' copy for row j's place (any copy will do
-            ! when u does not start a line: the same values, only slower)
-            s0 = mod(ubase + j*2*(nx + 1), line_reals)
+            ! aligned blocks (grid_row_sym): where rows j and j + 1 start in their lines when u
+            ! starts a line (as contact2d_explicit keeps it), the scratch rows placed alike, the
+            ! masses' copy for row j's place. Taken from the mesh, not from u's address, so that
+            ! the outputs that go by blocks, and so the bits, do not depend on where u is: u
+            ! elsewhere only makes the sweep slower.
+            s0 = mod(j*2*(nx + 1), line_reals)
             s1 = mod(s0 + 2*(nx + 1), line_reals)
-            d(1) = modulo(s0 - sslot(k, t), line_reals)
-            d(2) = modulo(s0 - sslot(k + 1, t), line_reals)
-            d(3) = modulo(s1 - sslot(kn, t), line_reals)
-            d(4) = modulo(s1 - sslot(kn + 1, t), line_reals)
+            d0 = modulo(s0 - scr_slot, line_reals)
+            d1 = modulo(s1 - scr_slot, line_reals)
             h = modulo(-s0 - 2, line_reals)
-            h = h - mod(h, 2)
             c = rclass(j)
             i0 = copy(s0, c)
             if (i0 == 0) i0 = maxval(copy(:, c))
             call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), u(1, 0, min(j + 2, ny)), &
-                              f(1, 0, j), qs, e(1, 1, -1, 1, rt), scr(d(1):, k, t), scr(d(2):, k + 1, t), &
-                              scr(d(3):, kn, t), scr(d(4):, kn + 1, t), jmade == j, v(1, 0, j), amc(i0:, 1), &
+                              f(1, 0, j), qs, e(1, 1, -1, 1, rt), scr(d0:, k, t), scr(d0:, k + 1, t), &
+                              scr(d1:, kn, t), scr(d1:, kn + 1, t), jmade == j, v(1, 0, j), amc(i0:, 1), &
                               amc(i0:, 2), ca, dt, w(1, 0, j), partial(1, j), full, h)
             jmade = j + 1
          else
@@ -456,9 +449,9 @@ contains
    !> where u0 starts a 64-byte line, and the caller places v, w, f, m, cbm, sb and eb alike, so
    !> that their vector loads and stores of eight values read one line, not two (the loads at
    !> p -+ 2 still read two). The outputs before and after the blocks go one by one. Which outputs
-   !> go by blocks, and so the order of the energy sums' terms, depends on h, i.e. on where u sits
-   !> in memory: contact2d_explicit keeps u on a line, so that h is a function of the row and
-   !> of nx only and the bits do not change from run to run or with the thread count.
+   !> go by blocks, and so the order of the energy sums' terms, depends on h; the caller takes h
+   !> from the row and nx alone (where the row starts in a line when u starts one), so the bits
+   !> do not depend on where u is, nor on the thread count.
    subroutine grid_row_sym(n, um, u0, up, u2, f, q, e, sb, eb, sn, en, have, v, m, cbm, ca, dt, w, part, full, h)
       integer, intent(in) :: n
       real(wp), intent(in) :: um(0:n - 1), u0(0:n - 1), up(0:n - 1), q(0:7, 5)
@@ -472,7 +465,7 @@ contains
       real(wp), intent(inout) :: v(0:n - 1), w(0:n - 1)
       real(wp), intent(out) :: part(4)
       logical, intent(in) :: full   !< store f and form the u~ . f sum at the interior outputs
-      integer, intent(in) :: h      !< the blocks start at output 2 + h (0, 2, 4 or 6)
+      integer, intent(in) :: h      !< the blocks start at output 2 + h (even, 0 .. 6)
       integer, parameter :: nl = sweep_lanes, nu = 8/sweep_lanes   !< lanes, groups per block
       integer :: b, l, p, nb, pa, k, i
       real(wp) :: fp, vo, vs, wn, ek, es, ea, ekl(0:nl - 1), esl(0:nl - 1), eal(0:nl - 1)
