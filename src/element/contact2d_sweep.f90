@@ -272,9 +272,11 @@ contains
       real(wp), intent(inout) :: partial(4, 0:ny)
       real(wp), intent(in) :: qs(0:7, 5)
       integer, intent(in) :: nscr
-      real(wp), intent(inout), contiguous :: scr(0:, :, 0:)
+      ! (scr and amc not contiguous: with the attribute the step took 1.11x as long, A B B A at
+      ! k = 4 and 5, docs/performance.md "Aligned blocks")
+      real(wp), intent(inout) :: scr(0:, :, 0:)
       integer, intent(in) :: scr_slot
-      real(wp), intent(in), contiguous :: amc(:, :)
+      real(wp), intent(in) :: amc(:, :)
       integer, intent(in) :: copy(0:, :)
       integer :: j, rt, t, jmade, k, kn, s0, s1, h, c, i0, d0, d1
       ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it).
