@@ -71,8 +71,8 @@ module contact2d_sweep
       !> rmass and rcbm again, aligned like the grid rows that use them (the inside rows of
       !> grid_row_sym): copy(s, c) is the index in amc(:, 1) (masses) and amc(:, 2) (cb M^-1) of
       !> the first value of the copy of class c whose first value sits at place s of a line
-      !> (contact2d_align), formed for the places of the rows of class c when u starts a line
-      !> (contact2d_explicit); 0 where none
+      !> (contact2d_align), formed for the places of the inside rows of class c (row_place); 0
+      !> where none
       real(wp), allocatable :: amc(:, :)
       integer, allocatable :: copy(:, :)
       real(wp) :: cb_last = -1
@@ -148,7 +148,7 @@ contains
       allocate (this%copy(0:line_reals - 1, size(this%rmass, 2)))
       this%copy = 0
       do j = 1, this%ny - 1   ! the inside rows
-         this%copy(mod(j*n, line_reals), this%rclass(j)) = 1
+         this%copy(row_place(j, n), this%rclass(j)) = 1
       end do
       ncopy = count(this%copy > 0)
       ! each copy in its own stretch of whole lines (len reals), starting at its place s; whole
@@ -181,6 +181,14 @@ contains
          end do
       end do
    end subroutine fill_copies
+
+   !> Where grid row j (n reals a row) starts in a 64-byte line when u starts one: the place
+   !> the sweep's aligned blocks and the masses' copies are chosen by (from the mesh, not from
+   !> addresses, so that no result depends on where u is).
+   pure integer function row_place(j, n)
+      integer, intent(in) :: j, n
+      row_place = mod(j*n, line_reals)
+   end function row_place
 
    pure integer function row_type(j, ny)
       integer, intent(in) :: j, ny
@@ -303,14 +311,13 @@ contains
             ! masses' copy for row j's place. Taken from the mesh, not from u's address, so that
             ! the outputs that go by blocks, and so the bits, do not depend on where u is: u
             ! elsewhere only makes the sweep slower.
-            s0 = mod(j*2*(nx + 1), line_reals)
-            s1 = mod(s0 + 2*(nx + 1), line_reals)
+            s0 = row_place(j, 2*(nx + 1))
+            s1 = row_place(j + 1, 2*(nx + 1))
             d0 = modulo(s0 - scr_slot, line_reals)
             d1 = modulo(s1 - scr_slot, line_reals)
             h = modulo(-s0 - 2, line_reals)
             c = rclass(j)
             i0 = copy(s0, c)
-            if (i0 == 0) i0 = maxval(copy(:, c))
             call grid_row_sym(2*(nx + 1), u(1, 0, j - 1), u(1, 0, j), u(1, 0, j + 1), u(1, 0, min(j + 2, ny)), &
                               f(1, 0, j), qs, e(1, 1, -1, 1, rt), scr(d0:, k, t), scr(d0:, k + 1, t), &
                               scr(d1:, kn, t), scr(d1:, kn + 1, t), jmade == j, v(1, 0, j), amc(i0:, 1), &
