@@ -65,6 +65,8 @@ contains
          write (output_unit, '(a)') '  --set G:V=X         override deck variable V of group G (G#i for the i-th'
          write (output_unit, '(a)') '                      &dirichlet or &traction); repeatable; validated as the deck'
          write (output_unit, '(a)') '  -q, --quiet         do not echo the effective deck'
+         write (output_unit, '(a)') '  --static            solve the static problem directly (solver:method = ''static'','
+         write (output_unit, '(a)') '                      docs/static.md) instead of the explicit march'
          write (output_unit, '(a)') 'Deck reference: docs/deck.md. Output layout: docs/output.md.'
          stop
       end if
@@ -110,6 +112,10 @@ contains
          ! output safety as for the explicit engine: lock, temporary file, move into place
          call opath%acquire(stat, errmsg)
          if (stat /= 0) call fail(1, errmsg)
+         ! SIGINT/SIGTERM: the static engine stops before its next increment and the file ends
+         ! with status 'interrupted', as an explicit run's; during the set-up nothing is written
+         stat = sys_signals_install()
+         if (stat /= 0) call fail(2, 'cannot install the SIGINT/SIGTERM handler: '//sys_strerror(stat))
          call static_run(deck, model, opath%partial, .false., clock0, stat, errmsg, sidecar=opath%xmf_partial, &
                          target=opath%target, written=static_written)
          if (static_written) then
@@ -117,6 +123,18 @@ contains
             if (i /= 0) call fail(2, static_msg)
          else if (stat == 2) then
             call fail_write(errmsg//'; what was written so far is in '//opath%partial)
+         end if
+         i = sys_signal_pending()
+         if (i /= 0) then
+            call opath%abandon(.false.)
+            if (static_written) then
+               static_msg = '; '//cli%output//" holds the increments done (status 'interrupted')"
+            else
+               static_msg = ' during the static engine''s set-up; nothing was written'
+            end if
+            write (error_unit, '(a)') program_name//': interrupted by '//trim(merge('SIGINT ', 'SIGTERM', i == 2))// &
+               static_msg
+            stop 128 + i, quiet=.true.
          end if
          if (stat /= 0) call fail(stat, errmsg)
          call opath%abandon(.false.)
@@ -404,8 +422,12 @@ contains
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: omega2_power
       integer, intent(in) :: iterations
+      character(len=:), allocatable :: bound
+      bound = 'element bound 2/omega_max'
+      if (model%scaled_nodes > 0) bound = 'bound with mass scaling'
+      if (model%contact%penalty) bound = bound//trim(merge(' and ', ' with', model%scaled_nodes > 0))//' the penalty springs'
       write (output_unit, '(a)') 'dt = '//sci(model%dt)//' s = '//fixed(model%dt/model%dt_critical, 3)// &
-         ' dt_critical (element bound 2/omega_max = '//sci(model%dt_critical)//' s)'
+         ' dt_critical ('//bound//' = '//sci(model%dt_critical)//' s)'
       if (omega2_power > 0) then
          write (output_unit, '(a)') 'power iteration ('//str(iterations)//' its): omega_max >= '// &
             sci(sqrt(omega2_power))//' 1/s, true stable limit <= '//sci(2/sqrt(omega2_power))//' s = '// &

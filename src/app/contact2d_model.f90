@@ -48,7 +48,7 @@ contains
       !> outward normals of the sides bottom, right, top, left
       real(wp), parameter :: outward(2, 4) = reshape([0.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
                                                       -1.0_wp, 0.0_wp], [2, 4])
-      real(wp) :: dt_scaled
+      real(wp) :: dt_scaled, omega2
 
       if (len_trim(deck%mesh%file) > 0) then
          ! a Gmsh mesh (docs/geometry.md): quads only, oriented, Jacobians checked
@@ -109,8 +109,11 @@ contains
       model%dt_critical = max(model%dt_critical, dt_scaled)
       if (model%contact%penalty) then
          ! penalty springs k_p w_i at the contact nodes stiffen them: the nodal bound
-         ! dt <= 2 / sqrt(omega_max^2 + k_p w_i / m_i) (issue 6)
-         model%dt_critical = 2/sqrt(model%stiff%omega2_element + &
+         ! dt <= 2 / sqrt(omega_max^2 + k_p w_i / m_i) (issue 6); omega_max^2 and m_i of the
+         ! scaled system when mass scaling gives the larger step
+         omega2 = model%stiff%omega2_element
+         if (dt_scaled > model%stiff%dt_critical()) omega2 = (2/dt_scaled)**2
+         model%dt_critical = 2/sqrt(omega2 + &
                                     maxval(model%contact%penalty_stiffness*model%contact%weight/model%contact%mass))
       end if
       stat = 1
@@ -189,6 +192,7 @@ contains
             cfg%tresca_scope = c%tresca_scope
             cfg%method = c%method
             cfg%penalty_stiffness = c%penalty_stiffness
+            cfg%file_id = model%mesh%file_id([(g, g=1, model%mesh%nnode)])
             call model%contact%init(cfg, nodes, model%mesh%x, model%load%free, model%stiff%mass, &
                                     model%warnings, stat, errmsg)
             ! a plane whose normal nu (from the obstacle into the body) points along the built-in

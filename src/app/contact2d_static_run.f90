@@ -13,6 +13,7 @@ module contact2d_static_run
    use contact2d_explicit, only: explicit_t, damping_none
    use contact2d_output, only: output_t
    use contact2d_static, only: static_t, kkt_names
+   use contact2d_sys, only: sys_signal_pending
    implicit none
    private
    public :: static_run, static_distance, summary_contact_status
@@ -42,14 +43,21 @@ contains
       real(wp) :: t_end, t, wall, timings(4), w_prev, wf, wn, kkt_max(4), residual
       real(wp), allocatable :: uprev(:, :), react_prev(:, :), fext_prev(:, :), fn_prev(:), d(:), dprev(:)
       logical :: converged, ok
-      character(len=:), allocatable :: message, status
+      character(len=:), allocatable :: message, status, reason
 
       code = 1
+      reason = ''
       if (present(written)) written = .false.
       call supported(deck, stat, errmsg)
       if (stat /= 0) return
       call st%setup(model, stat, errmsg)
       if (stat /= 0) then
+         call st%free()
+         return
+      end if
+      if (sys_signal_pending() /= 0) then
+         ! SIGINT/SIGTERM during the factorisation (the driver reports it; nothing written)
+         errmsg = 'interrupted'
          call st%free()
          return
       end if
@@ -73,6 +81,16 @@ contains
          return
       end if
       call out%file%attr(out%file%id, 'method', 'static')
+      ! the root attributes an explicit file has, with their static values (docs/output.md)
+      call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
+      call out%file%attr(out%file%id, 'dt_limit', trim(deck%solver%dt_limit))
+      call out%file%attr(out%file%id, 'dt_initial', 0.0_wp)
+      call out%file%attr(out%file%id, 'dt_fallback_step', -1)
+      call out%file%attr(out%file%id, 'added_mass', model%added_mass)
+      call out%file%attr(out%file%id, 'body_mass', model%body_mass)
+      call out%file%attr(out%file%id, 'dynamic', 0)
+      call out%file%attr(out%file%id, 'convergence_test', 1)
+      call out%file%attr(out%file%id, 'initial_kinetic_energy', 0.0_wp)
       call out%sample(state, model, 0.0_wp)
 
       allocate (uprev(2, model%mesh%nnode), react_prev(2, model%mesh%nnode), fext_prev(2, model%mesh%nnode))
@@ -88,11 +106,17 @@ contains
       kkt_max = 0
       residual = 0
       do k = 1, nk
+         if (sys_signal_pending() /= 0) then
+            converged = .false.
+            status = 'interrupted'
+            exit
+         end if
          t = t_end*real(k, wp)/nk
          call st%increment(model, t, ok, message, stat, errmsg)
          if (stat /= 0) then
             converged = .false.
             status = 'static solver failure'
+            reason = errmsg//' (increment '//str(k)//')'
             exit
          end if
          kkt_max = max(kkt_max, st%kkt)
@@ -184,7 +208,8 @@ contains
          errmsg = ''
       else
          code = 2
-         if (len(errmsg) == 0) errmsg = 'static engine: '//status
+         errmsg = 'static engine: '//status
+         if (len(reason) > 0) errmsg = errmsg//': '//reason
          if (present(target)) then
             errmsg = errmsg//'; '//target//' holds the last iterate'
          else

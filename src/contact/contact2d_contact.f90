@@ -34,6 +34,9 @@ module contact2d_contact
       class(obstacle_t), allocatable :: obstacle   !< the rigid obstacle
       !> point O of the abscissa (huge() components: the first node) [mm]
       real(wp) :: origin(2) = huge(1.0_wp)
+      !> node numbers as the user's mesh file has them, for messages (not allocated: the
+      !> solver's own numbers)
+      integer, allocatable :: file_id(:)
       character(len=4) :: multiplier = 'P1'        !< 'P1' | 'P0'
       character(len=16) :: friction = 'frictionless'  !< 'frictionless' | 'tresca' | 'coulomb'
       real(wp) :: friction_coefficient = 0         !< Coulomb mu [-] (friction = 'coulomb')
@@ -153,7 +156,7 @@ contains
          if (any(free(:, k) == 0 .and. abs(cand_nu(:, i)) > 1.0e-12_wp)) then
             keep(i) = .false.
             if (len(ids) > 0) ids = ids//', '
-            ids = ids//str(k)
+            ids = ids//str(user_id(k))
          end if
       end do
       nd = count(.not. keep)
@@ -180,7 +183,7 @@ contains
       ! the kept nodes must still form one chain of element edges
       do i = 1, size(candidates) - 1
          if (.not. keep(i) .and. any(keep(:i - 1)) .and. any(keep(i + 1:))) then
-            errmsg = 'contact: node '//str(candidates(i))//' inside the candidate boundary has a prescribed '// &
+            errmsg = 'contact: node '//str(user_id(candidates(i)))//' inside the candidate boundary has a prescribed '// &
                      'normal displacement; split the boundary or free that node'
             return
          end if
@@ -225,7 +228,7 @@ contains
             this%mass(i) = mass(k)
             this%slides(i) = all(free(:, k) == 1 .or. abs(this%tangent(:, i)) <= 1.0e-12_wp)
             if (this%gap(i) < -tol) then
-               errmsg = 'contact: node '//str(k)//' at ('//str(x(1, k))//', '//str(x(2, k))// &
+               errmsg = 'contact: node '//str(user_id(k))//' at ('//str(x(1, k))//', '//str(x(2, k))// &
                         ') starts inside the obstacle (gap '//str(this%gap(i))//' mm)'
                return
             end if
@@ -282,6 +285,13 @@ contains
       end if
       stat = 0
       errmsg = ''
+   contains
+      !> node k as the user's mesh file numbers it
+      integer function user_id(k)
+         integer, intent(in) :: k
+         user_id = k
+         if (allocated(cfg%file_id)) user_id = cfg%file_id(k)
+      end function user_id
    end subroutine contact_init
 
    pure real(wp) function interpolate(xs, ys, x) result(y)

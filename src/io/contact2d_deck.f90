@@ -251,7 +251,7 @@ contains
          errmsg = "deck '"//path//"' is a "//trim(kind_names(kind))//', not a regular file'
          return
       else if (bytes > max_deck_bytes) then
-         errmsg = "deck '"//path//"' has "//str(int(bytes))//' bytes, more than a deck may have ('// &
+         errmsg = "deck '"//path//"' has "//str(bytes)//' bytes, more than a deck may have ('// &
                   str(max_deck_bytes)//')'
          return
       end if
@@ -625,7 +625,8 @@ contains
       character(len=:), allocatable, intent(inout) :: errmsg
       real(wp) :: lx, ly
       integer :: nx, ny, level, ios, i
-      character(len=256) :: msg, file
+      character(len=256) :: msg
+      character(len=line_len) :: file
       namelist /mesh/ lx, ly, nx, ny, level, file
       lx = cfg%lx; ly = cfg%ly; nx = cfg%nx; ny = cfg%ny; level = cfg%level; file = cfg%file
       if (size(blk) > 0) then
@@ -636,6 +637,7 @@ contains
          read (ovr(i)%assignment, nml=mesh, iostat=ios, iomsg=msg)
          if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
+      if (too_long(where, 'file', file, len(cfg%file), stat, errmsg)) return
       cfg%lx = lx; cfg%ly = ly; cfg%nx = nx; cfg%ny = ny; cfg%level = level; cfg%file = file
    end subroutine read_mesh
 
@@ -792,6 +794,8 @@ contains
       end do
       if (too_long(where, 'damping', damping, len(cfg%damping), stat, errmsg)) return
       if (too_long(where, 'method', method, len(cfg%method), stat, errmsg)) return
+      if (too_long(where, 'dt_limit', dt_limit, len(cfg%dt_limit), stat, errmsg)) return
+      if (too_long(where, 'convergence_test', convergence_test, len(cfg%convergence_test), stat, errmsg)) return
       cfg%dt = dt; cfg%dt_factor = dt_factor; cfg%allow_unstable = allow_unstable
       cfg%t_ramp = t_ramp; cfg%t_end = t_end; cfg%max_steps = max_steps
       cfg%damping = damping; cfg%alpha = alpha; cfg%damping_interval = damping_interval
@@ -1119,6 +1123,11 @@ contains
                errmsg = "contact:obstacle_side = '"//trim(c%obstacle_side)//"' is not one of 'outside', 'inside'"
                return
             end if
+            if (count(c%origin == unset) == 1) then
+               errmsg = 'contact:origin = '//str(minval(c%origin))// &
+                        ' has one component; give both, origin = x, y (mm)'
+               return
+            end if
             if (c%obstacle == 'circle') then
                if (any(c%obstacle_center == unset)) then
                   errmsg = "contact:obstacle = 'circle' needs obstacle_center (mm)"
@@ -1270,6 +1279,7 @@ contains
                if (check_finite('contact:threshold_abscissa', c%threshold_abscissa, errmsg)) return
                if (check_finite('contact:threshold_values', c%threshold_values, errmsg)) return
                if (check_finite('contact:penalty_stiffness', c%penalty_stiffness, errmsg)) return
+               if (check_finite('contact:friction_coefficient', c%friction_coefficient, errmsg)) return
                if (check_finite('contact:obstacle_center', c%obstacle_center, errmsg)) return
                if (check_finite('contact:obstacle_radius', c%obstacle_radius, errmsg)) return
             end if

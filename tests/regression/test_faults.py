@@ -2,6 +2,7 @@
 
 - SIGINT / SIGTERM mid-run: exit 130 / 143, one line on stderr, OUT.h5 in place with status
   'interrupted', the history up to the stop, /final and the sidecar; no temporary file or lock left.
+  The same for the static engine (--static) between its increments.
 - kill -9 of a --force run over an existing result: the result is byte for byte intact, the
   killed run's OUT.h5.<pid>.partial is there and opens (what was flushed is readable).
 - Two runs on one output: while one writes, a second --force run is refused with one line and
@@ -94,11 +95,37 @@ def check_interrupt(t, sig, code):
             os.path.exists(os.path.join(folder, "out.xmf")))
 
 
+def check_static_interrupt(t, sig, code):
+    """The static engine (--static) stops before its next increment, as an explicit run does."""
+    name = "static_sig%d" % sig
+    folder = t.subdir(name)
+    nk = 10 ** 6   # far more increments than a second holds
+    proc = start(t, folder, t.deck(LONG), ["--static", "--set", "mesh:level=2",
+                                           "--set", "solver:static_increments=%d" % nk])
+    partial = wait_for(os.path.join(folder, "out.h5.*.partial"))
+    t.require(partial is not None, name + ": " + "the static run started writing its partial file")
+    time.sleep(1.0)
+    proc.send_signal(sig)
+    rc, err, _ = finish(proc)
+    t.check_equal(name, "exit code", code, rc)
+    t.check_equal(name, "lines on stderr", 1, len(err))
+    t.check(name, "the line says interrupted", bool(err) and "interrupted by" in err[0], "interrupted by ...",
+            err[0] if err else "")
+    t.check_equal(name, "no temporary or lock file left", [], leftovers(folder))
+    with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+        t.check_equal(name, "status", "interrupted", c2dtest.attr_str(f.attrs["status"]))
+        steps = int(f.attrs["steps"])
+        t.check(name, "stopped between increments", 0 < steps < nk, "0 < increments < %d" % nk, steps)
+        t.check_equal(name, "history up to the stop (last sample = increments)", steps, int(f["history/step"][-1]))
+
+
 def body(t):
     quick = [t.deck(UNIAXIAL)]
     # ---- interrupts -------------------------------------------------------------------------
     check_interrupt(t, signal.SIGINT, 130)
     check_interrupt(t, signal.SIGTERM, 143)
+    check_static_interrupt(t, signal.SIGINT, 130)
+    check_static_interrupt(t, signal.SIGTERM, 143)
 
     # ---- kill -9 of a --force run over an existing result -----------------------------------
     name = "kill9"

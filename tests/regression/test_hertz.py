@@ -12,6 +12,8 @@ penetration; for the circle, /contact/gap and /contact/normal against |x - C| - 
 (postproc/hertz_study.py, docs/geometry.md), too slow for the suite.
 """
 import os
+import re
+import shutil
 import sys
 
 import numpy as np
@@ -60,11 +62,36 @@ def body(t):
         dd = c2dtest.dual_coupling(s) @ d
         t.check_le(run, "P0 penetration max (D d)_i / w_i / a", float(np.max(dd / c2dtest.nodal_weights(s))) / m["a"],
                    1e-12)
+    if scene == "cylinder" and mult == "p1":
+        dropped_node_named_as_in_file(t, deck)
 
 
 def f_abscissa(run):
     with run.open() as f:
         return f["contact/abscissa"][()]
+
+
+def dropped_node_named_as_in_file(t, deck):
+    """A Gamma_c node with a prescribed normal dof is dropped with a warning naming the node as
+    the mesh file (and the output's /mesh) numbers it, not the solver's renumbered index: here
+    u_y = 0 on the symmetry line up to y = 0.5 takes the arc's end at (0, 0)."""
+    folder = t.subdir("dropped_node")
+    with open(deck) as fh:
+        text = fh.read()
+    line = "&dirichlet  boundary = 'symmetry', component = 'x', values = 0.0 /"
+    t.require(line in text, "the cylinder deck has the symmetry condition")
+    text = text.replace(line, line + "\n&dirichlet  boundary = 'symmetry', ymax = 0.5, component = 'y', values = 0.0 /")
+    with open(os.path.join(folder, "hertz_sym.nml"), "w") as fh:
+        fh.write(text)
+    shutil.copy(os.path.join(os.path.dirname(deck), "hertz_cylinder.geo"), folder)
+    run = t.run(os.path.join(folder, "hertz_sym.nml"), "--set", "solver:max_steps=2", cwd=folder, name="dropped_node")
+    with run.open() as f:
+        x = f["mesh/coordinates"][()]
+    corner = int(np.argmin(np.hypot(x[:, 0], x[:, 1]))) + 1
+    said = [ln for ln in run.stderr_lines() if "dropped from Gamma_c" in ln]
+    t.check_equal(run, "one warning about the dropped node", 1, len(said))
+    got = re.search(r"\(node ([0-9, ]+)\)", said[0]).group(1) if said else ""
+    t.check_equal(run, "the warning names the node at (0, 0) by its number in /mesh/coordinates", str(corner), got)
 
 
 if __name__ == "__main__":

@@ -4,7 +4,9 @@
 - Multipliers (P1 per node, P0 per dual cell) do not penetrate: max penetration <= 1e-12 delta.
 - The penalty penetrates uniformly by d = p/k_p, p = E delta / (H (1 - nu^2) + E/k_p) (a spring of
   stiffness k_p per unit length in series with the block): measured within 5 %.
-- Its stable step shrinks with k_p: dt_critical = 2/sqrt(omega_max^2 + max_i k_p w_i/m_i).
+- Its stable step shrinks with k_p: dt_critical = 2/sqrt(omega_max^2 + max_i k_p w_i/m_i); with
+  solver:mass_scaling = dt_t it is at least 2/sqrt((2/dt_t)^2 + max_i k_p w_i/m_i) (scaled masses)
+  and below the scaled system's true limit.
 - k_p = 1e8 at the elastic dt: refused without solver:allow_unstable (one line, nothing written),
   blows up with it (exit 2, readable file), stable and right at the penalty-adjusted dt.
 - 1.1 x the power-iteration limit (penalty springs included) blows up: the guard catches it.
@@ -66,6 +68,37 @@ def body(t):
         t.check_ge(run, "true limit (dense eigensolve, springs included) / penalty dt_critical", dt_true / dt_crit,
                    1 - 1e-12, reason="the nodal bound 2/sqrt(omega_el^2 + k_p w/m) must be conservative")
         t.check_le(run, "penalty dt_critical <= elastic dt_critical", dt_crit, dt_elastic * (1 + 1e-15))
+
+    # ---- penalty with mass scaling: the springs lower the scaled system's bound, not the original's --
+    kp, dt_t = 1e6, 1e-7
+    run = t.run(deck, "--set", "contact:penalty_stiffness=%r" % kp, "--set", "solver:mass_scaling=%r" % dt_t,
+                name="penalty_mass_scaling")
+    t.expect_exit(run, 0)
+    with run.open() as f:
+        pen = penetration(f, "P1")
+        dt_crit = float(f.attrs["dt_critical"])
+        t.check_equal(run, "converged", 1, int(f.attrs["converged"]))
+        t.check(run, "mass added", float(f.attrs["added_mass"]) > 0, "> 0", float(f.attrs["added_mass"]))
+        coords = f["mesh/coordinates"][()]
+        conn = f["mesh/connectivity"][()] - 1
+        nodes = f["contact/nodes"][()] - 1
+        mass = f["mesh/mass"][()]                       # the scaled nodal masses
+        w = c2dtest.nodal_weights(f["contact/abscissa"][()])
+        deck_eff = c2dtest.parse_effective_deck(c2dtest.attr_str(f.attrs["effective_deck"]))
+    # every row of the scaled system meets dt_t (Gershgorin), so the springs can only lower the step to
+    bound = 2 / np.sqrt((2 / dt_t) ** 2 + np.max(kp * w / mass[nodes]))
+    t.check_ge(run, "dt_critical / 2/sqrt((2/dt_t)^2 + max k_p w_i/m_i) (scaled m_i)", dt_crit / bound, 1 - 1e-12,
+               reason="mass scaling reaches dt_t before the springs (docs/deck.md)")
+    K, _ = c2dtest.q1_plane_strain(coords, conn, E, NU, RHO)
+    K[2 * nodes + 1, 2 * nodes + 1] += kp * w
+    free = np.flatnonzero(c2dtest.free_dofs_from_deck(coords, deck_eff))
+    sc = 1 / np.sqrt(np.repeat(mass, 2)[free])
+    dt_true = 2 / np.sqrt(np.linalg.eigvalsh(K[np.ix_(free, free)] * sc[:, None] * sc[None, :])[-1])
+    t.check_ge(run, "true limit of the scaled system with the springs / dt_critical", dt_true / dt_crit, 1 - 1e-12,
+               reason="the bound must stay conservative")
+    p = E * DELTA / (H * (1 - NU**2) + E / kp)
+    t.check_close(run, "penetration = p/k_p with mass scaling (the static end state)", p / kp, pen, rtol=0.05,
+                  reason="issue 6 (5 %); added mass does not move an equilibrium")
 
     # ---- k_p beyond the stable limit at the elastic dt -------------------------------------------
     kp = 1e8

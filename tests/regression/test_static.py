@@ -43,6 +43,7 @@ import static_kkt  # noqa: E402  (tests/regression: the KKT residuals from the f
 
 FRICTIONLESS = ["--set", "contact:friction='frictionless'", "--set", "contact:threshold=0"]
 E, NU = 7.0e4, 0.3
+RHO = 2.7e-9   # material:density of the paper decks [t/mm^3]
 TOL = 1e-12
 
 
@@ -64,6 +65,25 @@ def body(t):
                         t.check_equal(run, "attribute steps", 1, int(h5.attrs["steps"]))
                         t.check_equal(run, "attribute converged", 1, int(h5.attrs["converged"]))
                         t.check_equal(run, "history samples (start + increments)", 2, h5["history/time"].shape[0])
+                        # the root attributes an explicit file has (docs/output.md), with static values
+                        t.check_equal(run, "attribute dynamic", 0, int(h5.attrs["dynamic"]))
+                        t.check_equal(run, "attribute convergence_test", 1, int(h5.attrs["convergence_test"]))
+                        t.check_equal(run, "attribute initial_kinetic_energy", 0.0,
+                                      float(h5.attrs["initial_kinetic_energy"]))
+                        t.check_equal(run, "attribute dt_initial", 0.0, float(h5.attrs["dt_initial"]))
+                        t.check_equal(run, "attribute dt_fallback_step", -1, int(h5.attrs["dt_fallback_step"]))
+                        t.check_equal(run, "attribute added_mass", 0.0, float(h5.attrs["added_mass"]))
+                        t.check_equal(run, "attribute dt_limit", "element", c2dtest.attr_str(h5.attrs["dt_limit"]))
+                        # body mass = density x area (the shoelace area of the elements)
+                        xy = h5["mesh/coordinates"][:]
+                        q = xy[h5["mesh/connectivity"][:] - 1]
+                        area = 0.5 * np.sum(q[:, :, 0] * np.roll(q[:, :, 1], -1, axis=1)
+                                            - np.roll(q[:, :, 0], -1, axis=1) * q[:, :, 1])
+                        t.check(run, "body_mass = density x area", abs(float(h5.attrs["body_mass"]) - RHO * area)
+                                <= 1e-12 * RHO * area, "%.6e" % (RHO * area), float(h5.attrs["body_mass"]))
+                        t.check(run, "omega_max_element = 2 / dt_critical (docs/output.md)",
+                                abs(float(h5.attrs["omega_max_element"]) * float(h5.attrs["dt_critical"]) - 2) <= 1e-12,
+                                2.0, float(h5.attrs["omega_max_element"]) * float(h5.attrs["dt_critical"]))
 
     # 1b. a Gmsh mesh (graded, curved Gamma_c; a circle obstacle): KKT from the file alone, and
     #     2D Hertz (the acceptance of tests/regression/test_hertz.py, which runs the explicit engine)
