@@ -6,7 +6,7 @@ module contact2d_driver
    use contact2d_version, only: program_name, program_version
    use contact2d_strings, only: str, fixed, sci
    use contact2d_cli, only: cli_t, cli_parse, usage
-   use contact2d_deck, only: deck_t, deck_read
+   use contact2d_deck, only: deck_t, deck_read, deck_blame
    use contact2d_model, only: model_t, model_build
    use contact2d_explicit, only: explicit_t
    use contact2d_output, only: output_t
@@ -43,7 +43,7 @@ contains
       integer(i8) :: clock0, clock1, clock_last_progress, rate, t_steps, t_output, tick, snap_step
       real(wp) :: residual, t_load_end, omega2_power, timings(4), wall, kin_ratio
       real(wp) :: scale_peak, strain_peak, scale_now
-      logical :: converged, done, interactive, exists, sampled
+      logical :: converged, done, interactive, sampled
       real(wp), allocatable :: extra(:, :)
       real(wp) :: dt_initial
       type(thread_tuner_t) :: tuner
@@ -84,9 +84,9 @@ contains
       call opath%check(cli%output, cli%deck, cli%force, deck%output%xdmf, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
       call memory_check(deck, stat, errmsg)
-      if (stat /= 0) call fail(1, errmsg)
+      if (stat /= 0) call fail(1, errmsg//deck_blame(deck, errmsg))
       call model_build(deck, model, stat, errmsg)
-      if (stat /= 0) call fail(1, errmsg)
+      if (stat /= 0) call fail(1, errmsg//deck_blame(deck, errmsg))
       errmsg = initial_velocity_warning(model%load%free, deck%initial%velocity)
       if (len(errmsg) > 0) call model%warnings%add(errmsg)
 
@@ -302,7 +302,8 @@ contains
       if (deck%solver%compare_static) then
          call static_distance(deck, model, solver%u, static_dist, static_converged, stat, errmsg)
          if (stat /= 0) then
-            write (error_unit, '(a)') program_name//': warning: compare_static: '//errmsg
+            ! interrupted: said once, at the end
+            if (sys_signal_pending() == 0) write (error_unit, '(a)') program_name//': warning: compare_static: '//errmsg
          else
             call out%file%attr(out%file%id, 'static_distance_energy', static_dist)
             call out%file%attr(out%file%id, 'static_converged', merge(1, 0, static_converged))
@@ -331,6 +332,14 @@ contains
          write (error_unit, '(a)') program_name//': interrupted by '//trim(merge('SIGINT ', 'SIGTERM', stat == 2))// &
             ' at step '//str(solver%step)//' (t = '//str(solver%time)//' s); '//cli%output// &
             " holds the state at that step (status 'interrupted')"
+         stop 128 + stat, quiet=.true.
+      else if (sys_signal_pending() /= 0) then
+         ! a signal after the steps (during solver:compare_static): the run's file is complete
+         stat = sys_signal_pending()
+         write (error_unit, '(a)') program_name//': interrupted by '//trim(merge('SIGINT ', 'SIGTERM', stat == 2))// &
+            ' after the steps; '//cli%output//" holds the finished run (status '"//status//"')"// &
+            trim(merge(', without the static comparison', '                               ', &
+                       deck%solver%compare_static .and. static_dist == huge(1.0_wp)))
          stop 128 + stat, quiet=.true.
       end if
       if (solver%blown_up) then

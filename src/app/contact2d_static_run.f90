@@ -276,6 +276,12 @@ contains
       t_end = model%load%end_time()
       converged = .true.
       do k = 1, nk
+         ! SIGINT/SIGTERM: give up the comparison (the caller finishes the run's own file)
+         if (sys_signal_pending() /= 0) then
+            stat = 1
+            errmsg = 'interrupted by a signal before increment '//str(k)//'; no comparison written'
+            return
+         end if
          call st%increment(model, t_end*real(k, wp)/nk, ok, message, stat, errmsg)
          if (stat /= 0) return
          converged = converged .and. ok

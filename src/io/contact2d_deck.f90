@@ -23,7 +23,7 @@ module contact2d_deck
    use, intrinsic :: iso_c_binding, only: c_long_long
    implicit none
    private
-   public :: deck_t, deck_read, mesh_cfg_t, material_cfg_t, edge_load_cfg_t, contact_cfg_t
+   public :: deck_t, deck_read, deck_blame, mesh_cfg_t, material_cfg_t, edge_load_cfg_t, contact_cfg_t
    public :: solver_cfg_t, output_cfg_t, initial_cfg_t, unset, max_stages, max_points, edge_id, group_names
 
    !> Marks a real variable the deck did not set.
@@ -143,6 +143,14 @@ module contact2d_deck
       integer :: nsnapshot = 0            !< derived: number of snapshot times
    end type output_cfg_t
 
+   !> One --set override: group, 1-based occurrence (0: not given) and the assignment text.
+   type :: override_t
+      character(len=16) :: group = ''
+      integer :: index = 0
+      character(len=:), allocatable :: assignment
+      character(len=:), allocatable :: spec
+   end type override_t
+
    !> A whole deck after overrides and validation.
    type :: deck_t
       character(len=:), allocatable :: path        !< deck file as given
@@ -160,6 +168,8 @@ module contact2d_deck
       logical :: dynamic = .false.
       !> derived: the run stops at convergence (solver:convergence_test resolved)
       logical :: convergence_test = .true.
+      !> the --set overrides applied (for deck_blame)
+      type(override_t), allocatable :: overrides(:)
    end type deck_t
 
    !> One group occurrence in the deck: its name, first and last line.
@@ -167,14 +177,6 @@ module contact2d_deck
       character(len=16) :: name = ''
       integer :: first = 0, last = 0
    end type block_t
-
-   !> One --set override: group, 1-based occurrence (0: not given) and the assignment text.
-   type :: override_t
-      character(len=16) :: group = ''
-      integer :: index = 0
-      character(len=:), allocatable :: assignment
-      character(len=:), allocatable :: spec
-   end type override_t
 
 contains
 
@@ -209,15 +211,84 @@ contains
       end if
       call parse_overrides(overrides, blocks, ovr, stat, errmsg)
       if (stat /= 0) return
+      deck%overrides = ovr
       call read_groups(path, lines, blocks, ovr, deck, stat, errmsg)
       if (stat /= 0) return
       call validate(deck, stat, errmsg)
       if (stat /= 0) then
-         errmsg = path//': '//errmsg
+         errmsg = path//': '//errmsg//deck_blame(deck, errmsg)
          return
       end if
       deck%effective = echo(deck)
    end subroutine deck_read
+
+   !> The --set overrides an error message about the deck is about, as " (from --set '...')",
+   !> or '' when none is: an override of group G (occurrence i) and variable V is named when
+   !> the message names G:V, or is about that group (starts with "G: " or "<deck>: G: ", or
+   !> names "&G (#i)") and has V as a word (xmin, xmax, ymin, ymax also when it names the
+   !> group's range). The message itself keeps naming the deck, where the group is.
+   function deck_blame(deck, msg) result(note)
+      type(deck_t), intent(in) :: deck
+      character(len=*), intent(in) :: msg
+      character(len=:), allocatable :: note
+      character(len=:), allocatable :: m, g, v
+      integer :: i, eq, paren
+      logical :: about_group
+      note = ''
+      if (.not. allocated(deck%overrides)) return
+      m = lower(msg)
+      if (allocated(deck%path)) then
+         if (index(m, lower(deck%path)//': ') == 1) m = m(len(deck%path) + 3:)
+      end if
+      associate (ovr => deck%overrides)
+      do i = 1, size(ovr)
+         g = trim(ovr(i)%group)
+         eq = index(ovr(i)%assignment, '=')
+         v = lower(trim(adjustl(ovr(i)%assignment(1:eq - 1))))
+         paren = index(v, '(')
+         if (paren > 0) v = trim(v(1:paren - 1))
+         if (len(v) == 0) cycle
+         if (g == 'dirichlet' .or. g == 'traction') then
+            about_group = index(m, '&'//g//' (#'//str(ovr(i)%index)//')') > 0
+         else
+            about_group = index(m, g//': ') == 1
+         end if
+         if (has_word(m, g//':'//v) .or. (about_group .and. (has_word(m, v) .or. (has_word(m, 'range') &
+             .and. any(v == [character(len=4) :: 'xmin', 'xmax', 'ymin', 'ymax']))))) then
+            if (len(note) == 0) then
+               note = " (from --set '"//ovr(i)%spec//"'"
+            else
+               note = note//", --set '"//ovr(i)%spec//"'"
+            end if
+         end if
+      end do
+      end associate
+      if (len(note) > 0) note = note//')'
+   contains
+      !> w occurs in s with no letter, digit or underscore on either side.
+      logical function has_word(s, w)
+         character(len=*), intent(in) :: s, w
+         integer :: k, at
+         has_word = .false.
+         at = 0
+         do
+            k = index(s(at + 1:), w)
+            if (k == 0) return
+            at = at + k
+            if (.not. (ident(s, at - 1) .or. ident(s, at + len(w)))) then
+               has_word = .true.
+               return
+            end if
+         end do
+      end function has_word
+      logical function ident(s, k)
+         character(len=*), intent(in) :: s
+         integer, intent(in) :: k
+         ident = .false.
+         if (k < 1 .or. k > len(s)) return
+         ident = verify(s(k:k), 'abcdefghijklmnopqrstuvwxyz0123456789_') == 0
+      end function ident
+   end function deck_blame
 
    ! ---- reading ----------------------------------------------------------------------------
 
@@ -609,10 +680,19 @@ contains
       character(len=*), intent(in) :: msg, where
       integer, intent(inout) :: stat
       character(len=:), allocatable, intent(inout) :: errmsg
+      character(len=:), allocatable :: name
+      integer :: k
       read_failed = ios /= 0
       if (read_failed) then
          stat = 1
          errmsg = where//trim(msg)
+         ! an unquoted text value (--set contact:friction=coulomb) reads as a variable name
+         k = index(msg, 'Cannot match namelist object name ')
+         if (index(where, '--set') == 1 .and. k > 0) then
+            name = lower(trim(msg(k + 34:)))
+            if (len(name) > 0 .and. index(lower(where(index(where, '=') + 1:)), name) > 0) &
+               errmsg = errmsg//'; a text value needs quotes, e.g. --set "contact:friction='//"'coulomb'"//'"'
+         end if
       end if
    end function read_failed
 

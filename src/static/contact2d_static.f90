@@ -900,7 +900,9 @@ contains
          end if
          lmax = max(maxval(abs(lam)), tiny(1.0_wp))
          this%kkt(1) = max(maxval(e), 0.0_wp)/umax
-         this%kkt(2) = max(maxval(abs(lam*e))/(lmax*umax), maxval(-lam)/lmax, 0.0_wp)
+         ! (lmax umax floored: both may be near tiny on the first of many small increments, and
+         ! their product would be 0, the ratio 0/0)
+         this%kkt(2) = max(maxval(abs(lam*e))/max(lmax*umax, tiny(1.0_wp)), maxval(-lam)/lmax, 0.0_wp)
          ! the limits of the final forces (Tresca s_i w_i; Coulomb mu F_n,i; tresca_scope =
          ! 'contact': none out of contact), so a node without a limit must carry no F_t
          call law_limits(this, model, this%fn, this%mu, limk)
@@ -911,7 +913,7 @@ contains
             psi = dot_product(this%u(:, n) - uprev(:, n), model%contact%tangent(:, i))
             associate (ft => this%ft(i), s => limk(k))
                this%kkt(3) = max(this%kkt(3), max(abs(ft) - s, 0.0_wp)/lmax, &
-                                 abs(s*abs(psi) - ft*psi)/(lmax*umax))
+                                 abs(s*abs(psi) - ft*psi)/max(lmax*umax, tiny(1.0_wp)))
             end associate
          end do
       end if

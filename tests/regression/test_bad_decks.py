@@ -57,7 +57,22 @@ CASES = [
     ("set_unknown_group", "inputs/" + UNIAXIAL, ["--set", "solvr:dt_factor=0.5"],
      r"--set 'solvr:dt_factor=0\.5': unknown group 'solvr'"),
     ("set_unknown_variable", "inputs/" + UNIAXIAL, ["--set", "solver:dtfactor=0.5"],
-     r"--set 'solver:dtfactor=0\.5'.*dtfactor"),
+     # a misspelled name is not a text value: no hint about quotes
+     r"--set 'solver:dtfactor=0\.5'.*dtfactor$"),
+    ("set_text_unquoted", "inputs/" + UNIAXIAL, ["--set", "solver:damping=given"],
+     r"--set 'solver:damping=given'.*\bgiven; a text value needs quotes"),
+    # a value refused by validation names the --set it came from, as well as the deck's group
+    ("set_value_blamed", "inputs/" + UNIAXIAL, ["--set", "mesh:nx=3", "--set", "solver:tol_residual=-1"],
+     r"solver:tol_residual = -1 must be > 0 \(from --set 'solver:tol_residual=-1'\)$"),
+    ("set_range_blamed", "inputs/" + UNIAXIAL,
+     ["--set", "dirichlet#3:xmin=3", "--set", "dirichlet#2:ymin=0", "--set", "dirichlet#3:xmax=1"],
+     r"line 16: &dirichlet \(#3\): the range needs .*\(from --set 'dirichlet#3:xmin=3', --set 'dirichlet#3:xmax=1'\)$"),
+    # the same when the model refuses it, after the deck's checks
+    ("set_selection_blamed", "inputs/" + UNIAXIAL, ["--set", "dirichlet#3:xmin=3"],
+     r":16: &dirichlet \(#3\): the selection .*holds no node \(from --set 'dirichlet#3:xmin=3'\)$"),
+    # and a --set the message is not about is not named
+    ("set_not_blamed", "bad_decks/young_zero.nml", ["--set", "solver:tol_residual=1e-7"],
+     r"material:young = .*must be > 0$"),
     ("set_contact_without_group", "inputs/" + UNIAXIAL, ["--set", "contact:multiplier='P0'"],
      r"&contact"),
     ("group_not_closed", "bad_decks/group_not_closed.nml", [],

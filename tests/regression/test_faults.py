@@ -71,6 +71,8 @@ def leftovers(folder):
 
 # the static engine (--static) at level 2 with far more increments than a second holds
 STATIC_ARGS = ["--static", "--set", "mesh:level=2", "--set", "solver:static_increments=1000000"]
+PATCH = "patch_compression_p1.nml"
+COMPARE_ARGS = ["--set", "solver:compare_static=.true.", "--set", "solver:static_increments=1000000"]
 
 
 def check_interrupt(t, sig, code, static=False):
@@ -100,6 +102,30 @@ def check_interrupt(t, sig, code, static=False):
             os.path.exists(os.path.join(folder, "out.xmf")))
 
 
+def check_interrupt_comparison(t, sig, code):
+    """A signal during solver:compare_static, after the steps: the run's own file is finished and
+    published as it would have been (status from the steps), without the comparison's attributes."""
+    name = "compare_sig%d" % sig
+    folder = t.subdir(name)
+    proc = start(t, folder, t.deck(PATCH), COMPARE_ARGS)
+    partial = wait_for(os.path.join(folder, "out.h5.*.partial"))
+    t.require(partial is not None, name + ": " + "the run started writing its partial file")
+    time.sleep(1.0)   # the patch's 230 steps take milliseconds; 10^6 static increments take seconds
+    proc.send_signal(sig)
+    rc, err, _ = finish(proc)
+    t.check_equal(name, "exit code", code, rc)
+    t.check_equal(name, "lines on stderr", 1, len(err))
+    t.check(name, "the line says interrupted after the steps", bool(err) and "after the steps" in err[0],
+            "interrupted by ... after the steps", err[0] if err else "")
+    t.check_equal(name, "no temporary or lock file left", [], leftovers(folder))
+    with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+        t.check_equal(name, "status (the steps converged)", "converged", c2dtest.attr_str(f.attrs["status"]))
+        t.check_equal(name, "no static_distance_energy", False, "static_distance_energy" in f.attrs)
+        t.check_equal(name, "history flushed up to the end", int(f.attrs["steps"]), int(f["history/step"][-1]))
+    t.check(name, "sidecar written", os.path.exists(os.path.join(folder, "out.xmf")), True,
+            os.path.exists(os.path.join(folder, "out.xmf")))
+
+
 def body(t):
     quick = [t.deck(UNIAXIAL)]
     # ---- interrupts -------------------------------------------------------------------------
@@ -107,6 +133,8 @@ def body(t):
     check_interrupt(t, signal.SIGTERM, 143)
     check_interrupt(t, signal.SIGINT, 130, static=True)
     check_interrupt(t, signal.SIGTERM, 143, static=True)
+    check_interrupt_comparison(t, signal.SIGINT, 130)
+    check_interrupt_comparison(t, signal.SIGTERM, 143)
 
     # ---- kill -9 of a --force run over an existing result -----------------------------------
     name = "kill9"

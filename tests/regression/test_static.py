@@ -112,6 +112,22 @@ def body(t):
             t.check_le(run, "max |u - u_exact| / delta (linear field)", err, 1e-12)
             p = h5["final/contact/pressure"][()]
             t.check_le(run, "max |p - E delta / (H (1 - nu^2))| / p", np.abs(p - p_exact).max() / p_exact, 1e-12)
+    # many increments: the first carries ~1e-18 of the final displacement, so the KKT measures'
+    # scales (largest |u| times largest multiplier or limit, frictionless: no limit) underflow;
+    # they must stay finite (a Debug build traps 0/0), and the end state is the same linear field
+    run = t.run(t.deck("patch_compression_p1.nml"), "--static", "--set", "solver:static_increments=100000",
+                name="patch_p1_many_increments")
+    t.expect_exit(run, 0)
+    with run.open() as h5:
+        x = h5["mesh/coordinates"][()]
+        u = h5["final/displacement"][()]
+        uy = -1e-3 * x[:, 1] / 0.5
+        ux = NU / (1 - NU) * 1e-3 / 0.5 * (x[:, 0] - 0.5)
+        err = max(np.abs(u[:, 0] - ux).max(), np.abs(u[:, 1] - uy).max()) / 1e-3
+        t.check_le(run, "max |u - u_exact| / delta (linear field), 1e5 increments", err, 1e-12)
+        kkt = [float(h5.attrs[k]) for k in ("kkt_normal_feasibility", "kkt_complementarity",
+                                            "kkt_friction_feasibility", "kkt_equilibrium")]
+        t.check(run, "KKT measures finite", bool(np.isfinite(kkt).all()), "finite", kkt)
 
     # 3-4. explicit end state at tol 1e-12 against the static solution, level 3
     for mult in ("p1", "p0"):
