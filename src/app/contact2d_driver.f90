@@ -49,7 +49,7 @@ contains
       type(thread_tuner_t) :: tuner
       integer(i8) :: fallback_step
       real(wp) :: static_dist
-      logical :: static_converged, static_written
+      logical :: static_converged, static_written, static_opened
       character(len=:), allocatable :: static_msg
 
       call system_clock(clock0, rate)
@@ -117,12 +117,14 @@ contains
          stat = sys_signals_install()
          if (stat /= 0) call fail(2, 'cannot install the SIGINT/SIGTERM handler: '//sys_strerror(stat))
          call static_run(deck, model, opath%partial, .false., clock0, stat, errmsg, sidecar=opath%xmf_partial, &
-                         target=opath%target, written=static_written)
+                         target=opath%target, written=static_written, opened=static_opened)
          if (static_written) then
             call opath%publish(i, static_msg)
             if (i /= 0) call fail(2, static_msg)
-         else if (stat == 2) then
+         else if (stat == 2 .and. static_opened) then
             call fail_write(errmsg//'; what was written so far is in '//opath%partial)
+         else if (stat == 2) then
+            call fail_now(2, errmsg, .false.)   ! the file could not be created: no file kept
          end if
          i = sys_signal_pending()
          if (i /= 0) then
@@ -183,7 +185,7 @@ contains
       if (stat /= 0) call fail(2, 'cannot install the SIGINT/SIGTERM handler: '//sys_strerror(stat))
       call out%open(opath%partial, .false., deck, model, stat, errmsg, sidecar=opath%xmf_partial, &
                     target=opath%target)
-      if (stat /= 0) call fail(2, errmsg)
+      if (stat /= 0) call fail_now(2, errmsg, .false.)   ! nothing readable yet: no file kept
       keep_partial = .true.
       call out%file%attr(out%file%id, 'method', 'explicit')
       call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
@@ -380,12 +382,22 @@ contains
    !> touches it again), the lock released, exit 2.
    subroutine fail_write(msg)
       character(len=*), intent(in) :: msg
+      call fail_now(2, msg, .true.)
+   end subroutine fail_write
+
+   !> fail() without exit handlers: after an HDF5 write failed, the library's own exit handler
+   !> would flush the broken file again (seen to crash, SIGSEGV, when the output could not even
+   !> be created on a full disk). keep: keep the temporary file (it holds what was flushed).
+   subroutine fail_now(code, msg, keep)
+      integer, intent(in) :: code
+      character(len=*), intent(in) :: msg
+      logical, intent(in) :: keep
       write (error_unit, '(a)') program_name//': error: '//msg
-      call opath%abandon(.true.)
+      call opath%abandon(keep)
       flush (output_unit)
       flush (error_unit)
-      call sys_exit_now(2)
-   end subroutine fail_write
+      call sys_exit_now(code)
+   end subroutine fail_now
 
    !> Stop at once (exit 2) when a write to the output failed; what was flushed before stays
    !> readable in the temporary file, which is named in the message.

@@ -24,8 +24,8 @@ contains
    !> written (singular stiffness, model not supported); 2 written but not converged or failed.
    !> Output safety (issue 9): the driver passes the temporary file as `path`, the sidecar's
    !> temporary name as `sidecar` and the final name as `target`; `written` tells it whether the
-   !> file was finished (then it is moved into place).
-   subroutine static_run(deck, model, path, overwrite, clock0, code, errmsg, sidecar, target, written)
+   !> file was finished (then it is moved into place), `opened` whether it was created at all.
+   subroutine static_run(deck, model, path, overwrite, clock0, code, errmsg, sidecar, target, written, opened)
       type(deck_t), intent(in) :: deck
       type(model_t), intent(inout) :: model
       character(len=*), intent(in) :: path
@@ -34,7 +34,7 @@ contains
       integer, intent(out) :: code
       character(len=:), allocatable, intent(out) :: errmsg
       character(len=*), intent(in), optional :: sidecar, target
-      logical, intent(out), optional :: written
+      logical, intent(out), optional :: written, opened
       type(static_t) :: st
       type(explicit_t), target :: state
       type(output_t) :: out
@@ -48,6 +48,7 @@ contains
       code = 1
       reason = ''
       if (present(written)) written = .false.
+      if (present(opened)) opened = .false.
       call supported(deck, stat, errmsg)
       if (stat /= 0) return
       call st%setup(model, stat, errmsg)
@@ -80,6 +81,7 @@ contains
          call st%free()
          return
       end if
+      if (present(opened)) opened = .true.
       call out%file%attr(out%file%id, 'method', 'static')
       ! the root attributes an explicit file has, with their static values (docs/output.md)
       call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))

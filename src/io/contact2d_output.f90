@@ -12,6 +12,7 @@ module contact2d_output
    use contact2d_explicit, only: explicit_t
    use contact2d_q1, only: q1_stress_average
    use contact2d_strings, only: str
+   use contact2d_sys, only: sys_write_file, sys_strerror
    use contact2d_outpath, only: sidecar_name
    use hdf5, only: hid_t
    implicit none
@@ -216,8 +217,6 @@ contains
       call this%file%close_group(this%fields)
       root = this%file%id
       call this%file%attr(root, 'steps', int(solver%step))
-      call this%file%attr(root, 'converged', merge(1, 0, converged))
-      call this%file%attr(root, 'status', status)
       call this%file%attr(root, 'wall_seconds', wall_seconds)
       call this%file%attr(root, 'time_setup_seconds', timings(1))
       call this%file%attr(root, 'time_steps_seconds', timings(2))
@@ -238,6 +237,9 @@ contains
       call this%file%dataset(g, 'reaction', model%mesh%file_order(reaction), 'N')
       if (model%contact%active) call write_final_contact(this, g, model)
       call this%file%close_group(g)
+      ! the status last: a file whose /final failed to be written still says 'running'
+      call this%file%attr(root, 'converged', merge(1, 0, converged))
+      call this%file%attr(root, 'status', status)
       call this%file%close()
       stat = this%file%stat
       errmsg = ''
@@ -275,69 +277,65 @@ contains
       type(model_t), intent(in) :: model
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      character(len=:), allocatable :: base, nn, ne
-      character(len=256) :: msg
-      integer :: unit, slash
+      character(len=:), allocatable :: base, nn, ne, text
+      integer :: slash
 
       slash = index(h5path, '/', back=.true.)
       base = h5path(slash + 1:)
       nn = str(model%mesh%nnode)
       ne = str(model%mesh%nel)
-      open (newunit=unit, file=xmf, status='replace', action='write', iostat=stat, iomsg=msg)
-      if (stat /= 0) then
-         errmsg = 'cannot write '//xmf//': '//trim(msg)
-         return
-      end if
-      write (unit, '(a)') '<?xml version="1.0" ?>'
-      write (unit, '(a)') '<Xdmf Version="2.0">'
-      write (unit, '(a)') ' <Domain>'
-      write (unit, '(a)') '  <Grid Name="final" GridType="Uniform">'
-      write (unit, '(a)') '   <Topology TopologyType="Quadrilateral" NumberOfElements="'//ne//'">'
+      text = ''
+      call put('<?xml version="1.0" ?>')
+      call put('<Xdmf Version="2.0">')
+      call put(' <Domain>')
+      call put('  <Grid Name="final" GridType="Uniform">')
+      call put('   <Topology TopologyType="Quadrilateral" NumberOfElements="'//ne//'">')
       ! connectivity is 1-based in the file; XDMF wants 0-based
-      write (unit, '(a)') '    <DataItem ItemType="Function" Function="$0 - 1" Dimensions="'//ne//' 4">'
-      write (unit, '(a)') '     <DataItem Dimensions="'//ne//' 4" NumberType="Int" Format="HDF">'// &
-         base//':/mesh/connectivity</DataItem>'
-      write (unit, '(a)') '    </DataItem>'
-      write (unit, '(a)') '   </Topology>'
-      write (unit, '(a)') '   <Geometry GeometryType="XY">'
-      write (unit, '(a)') '    <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
-         base//':/mesh/coordinates</DataItem>'
-      write (unit, '(a)') '   </Geometry>'
+      call put('    <DataItem ItemType="Function" Function="$0 - 1" Dimensions="'//ne//' 4">')
+      call put('     <DataItem Dimensions="'//ne//' 4" NumberType="Int" Format="HDF">'// &
+         base//':/mesh/connectivity</DataItem>')
+      call put('    </DataItem>')
+      call put('   </Topology>')
+      call put('   <Geometry GeometryType="XY">')
+      call put('    <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
+         base//':/mesh/coordinates</DataItem>')
+      call put('   </Geometry>')
       call vector('displacement', '/final/displacement')
       call vector('velocity', '/final/velocity')
-      write (unit, '(a)') '   <Attribute Name="stress_xx_yy_xy" AttributeType="Matrix" Center="Cell">'
-      write (unit, '(a)') '    <DataItem Dimensions="'//ne//' 3" NumberType="Float" Precision="8" Format="HDF">'// &
-         base//':/final/stress</DataItem>'
-      write (unit, '(a)') '   </Attribute>'
-      write (unit, '(a)') '  </Grid>'
-      write (unit, '(a)') ' </Domain>'
-      write (unit, '(a)') '</Xdmf>'
-      flush (unit, iostat=stat, iomsg=msg)
-      if (stat == 0) then
-         close (unit, iostat=stat, iomsg=msg)
-      else
-         close (unit)
-      end if
+      call put('   <Attribute Name="stress_xx_yy_xy" AttributeType="Matrix" Center="Cell">')
+      call put('    <DataItem Dimensions="'//ne//' 3" NumberType="Float" Precision="8" Format="HDF">'// &
+         base//':/final/stress</DataItem>')
+      call put('   </Attribute>')
+      call put('  </Grid>')
+      call put(' </Domain>')
+      call put('</Xdmf>')
+      ! written whole, every write, fsync and close checked (a full disk is an error, not an
+      ! empty sidecar)
+      stat = sys_write_file(xmf, text)
       errmsg = ''
-      if (stat /= 0) errmsg = 'cannot write '//xmf//': '//trim(msg)
+      if (stat /= 0) errmsg = 'cannot write '//xmf//': '//sys_strerror(stat)
    contains
+      subroutine put(line)
+         character(len=*), intent(in) :: line
+         text = text//line//new_line('a')
+      end subroutine put
       subroutine vector(name, path)
          character(len=*), intent(in) :: name, path
          ! pad (x, y) with a zero z so that ParaView's Warp By Vector works
-         write (unit, '(a)') '   <Attribute Name="'//name//'" AttributeType="Vector" Center="Node">'
-         write (unit, '(a)') '    <DataItem ItemType="Function" Function="JOIN($0, $1, 0*$1)" Dimensions="'//nn//' 3">'
-         write (unit, '(a)') '     <DataItem ItemType="HyperSlab" Dimensions="'//nn//' 1">'
-         write (unit, '(a)') '      <DataItem Dimensions="3 2" Format="XML">0 0 1 1 '//nn//' 1</DataItem>'
-         write (unit, '(a)') '      <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
-            base//':'//path//'</DataItem>'
-         write (unit, '(a)') '     </DataItem>'
-         write (unit, '(a)') '     <DataItem ItemType="HyperSlab" Dimensions="'//nn//' 1">'
-         write (unit, '(a)') '      <DataItem Dimensions="3 2" Format="XML">0 1 1 1 '//nn//' 1</DataItem>'
-         write (unit, '(a)') '      <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
-            base//':'//path//'</DataItem>'
-         write (unit, '(a)') '     </DataItem>'
-         write (unit, '(a)') '    </DataItem>'
-         write (unit, '(a)') '   </Attribute>'
+         call put('   <Attribute Name="'//name//'" AttributeType="Vector" Center="Node">')
+         call put('    <DataItem ItemType="Function" Function="JOIN($0, $1, 0*$1)" Dimensions="'//nn//' 3">')
+         call put('     <DataItem ItemType="HyperSlab" Dimensions="'//nn//' 1">')
+         call put('      <DataItem Dimensions="3 2" Format="XML">0 0 1 1 '//nn//' 1</DataItem>')
+         call put('      <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
+            base//':'//path//'</DataItem>')
+         call put('     </DataItem>')
+         call put('     <DataItem ItemType="HyperSlab" Dimensions="'//nn//' 1">')
+         call put('      <DataItem Dimensions="3 2" Format="XML">0 1 1 1 '//nn//' 1</DataItem>')
+         call put('      <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
+            base//':'//path//'</DataItem>')
+         call put('     </DataItem>')
+         call put('    </DataItem>')
+         call put('   </Attribute>')
       end subroutine vector
    end subroutine write_xdmf
 end module contact2d_output

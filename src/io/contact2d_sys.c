@@ -8,7 +8,9 @@
  * - SIGINT/SIGTERM: the handler only stores the signal number in a sig_atomic_t; the step loop
  *   polls it once per step (no I/O, no allocation);
  * - the reason of the last HDF5 failure, read from the HDF5 error stack (e.g. the errno text of
- *   a failed write: "No space left on device").
+ *   a failed write: "No space left on device");
+ * - a small text file written whole with every write, fsync and close checked (the XDMF
+ *   sidecar: gfortran's formatted I/O was seen to report success on a full disk).
  *
  * Every function returns 0 on success or an errno value; message buffers are NUL-terminated.
  */
@@ -147,6 +149,31 @@ int c2d_publish(const char *from, const char *to, int replace) {
  * HDF5 library's own exit handler would try to flush the broken file again (and was seen to
  * crash doing so); what was flushed before stays as it is on disk. */
 void c2d_exit_now(int code) { _exit(code); }
+
+/* Create (or truncate) `path` and write len bytes of buf to it; 0 or the errno of the first
+ * failed write, fsync or close (a short write is retried; no byte is ever silently lost). */
+int c2d_write_file(const char *path, const char *buf, long long len) {
+  int fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0666);
+  if (fd < 0) return errno;
+  long long done = 0;
+  while (done < len) {
+    ssize_t n = write(fd, buf + done, (size_t)(len - done));
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      int err = errno;
+      close(fd);
+      return err;
+    }
+    done += n;
+  }
+  if (fsync(fd) != 0) {
+    int err = errno;
+    close(fd);
+    return err;
+  }
+  if (close(fd) != 0) return errno;
+  return 0;
+}
 
 /* Remove a file (0 or errno; ENOENT counts as success). */
 int c2d_remove(const char *path) {

@@ -7,7 +7,7 @@ module contact2d_sys
    implicit none
    private
    public :: sys_signals_install, sys_signal_pending, sys_strerror, sys_path_info, sys_dir_writable
-   public :: sys_lock, sys_unlock, sys_publish, sys_remove, sys_h5_reason, sys_getpid, sys_exit_now
+   public :: sys_lock, sys_unlock, sys_publish, sys_remove, sys_h5_reason, sys_getpid, sys_exit_now, sys_write_file
    public :: kind_missing, kind_file, kind_directory, kind_device, kind_fifo, kind_socket, &
              kind_other, kind_dangling, kind_names
 
@@ -54,6 +54,11 @@ module contact2d_sys
          character(kind=c_char), intent(in) :: from(*), to(*)
          integer(c_int), value :: replace
       end function c2d_publish
+      integer(c_int) function c2d_write_file(path, buf, len) bind(C, name='c2d_write_file')
+         import :: c_int, c_char, c_long_long
+         character(kind=c_char), intent(in) :: path(*), buf(*)
+         integer(c_long_long), value :: len
+      end function c2d_write_file
       integer(c_int) function c2d_remove(path) bind(C, name='c2d_remove')
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
@@ -142,6 +147,13 @@ contains
       logical, intent(in) :: replace
       err = int(c2d_publish(from//c_null_char, to//c_null_char, merge(1_c_int, 0_c_int, replace)))
    end function sys_publish
+
+   !> Write text as the whole content of path (created or truncated); 0 or the errno of the
+   !> first failed write, fsync or close.
+   integer function sys_write_file(path, text) result(err)
+      character(len=*), intent(in) :: path, text
+      err = int(c2d_write_file(path//c_null_char, text, int(len(text), c_long_long)))
+   end function sys_write_file
 
    !> Remove a file (a missing file is no error).
    integer function sys_remove(path) result(err)
