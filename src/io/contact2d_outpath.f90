@@ -12,7 +12,11 @@
 !>   until the new one is complete. A run killed (kill -9) or stopped by a write error leaves
 !>   OUT.h5.<pid>.partial, readable up to its last flush.
 !> - The lock .OUT.h5.lock (flock, beside the target) is held from before the file is created
-!>   until it is in place: a second run aimed at the same output refuses with one line.
+!>   until it is in place: a second run aimed at the same output refuses with one line. So is
+!>   .OUT.xmf.lock for the sidecar, which two outputs may share (run.h5 and run.dat).
+!> - --force replaces this output's own sidecar only: an existing OUT.xmf that points at another
+!>   HDF5 file is refused; with output:xdmf = .false. the old sidecar of OUT.h5 (which would
+!>   describe the replaced file) is removed once the new result is in place.
 module contact2d_outpath
    use, intrinsic :: iso_c_binding, only: c_long_long
    use contact2d_strings, only: str
@@ -30,8 +34,11 @@ module contact2d_outpath
       character(len=:), allocatable :: xmf          !< OUT.xmf ('' without sidecar)
       character(len=:), allocatable :: xmf_partial  !< OUT.xmf.<pid>.partial
       character(len=:), allocatable :: lock         !< .OUT.h5.lock in the same folder
+      character(len=:), allocatable :: xlock        !< .OUT.xmf.lock ('' without sidecar)
+      character(len=:), allocatable :: stale        !< OUT.xmf of the replaced result, to remove
       logical :: force = .false.
       integer :: fd = -1                            !< lock descriptor (-1: not locked)
+      integer :: xfd = -1                           !< sidecar lock descriptor
    contains
       procedure :: check => outpath_check
       procedure :: acquire => outpath_acquire
@@ -64,7 +71,7 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       integer(c_long_long) :: ddev, dino, dsize
       integer :: dkind, err, slash
-      character(len=:), allocatable :: dir, base, pid
+      character(len=:), allocatable :: dir, base, pid, refers
 
       stat = 1
       this%force = force
@@ -77,6 +84,8 @@ contains
       this%lock = dir//'.'//base//'.lock'
       this%xmf = ''
       this%xmf_partial = ''
+      this%xlock = ''
+      this%stale = ''
       if (len(target) == 0) then
          errmsg = 'the output file name is empty'
          return
@@ -99,6 +108,18 @@ contains
          end if
          call check_one(this%xmf, 'XDMF sidecar', errmsg)
          if (len(errmsg) > 0) return
+         slash = index(this%xmf, '/', back=.true.)
+         this%xlock = this%xmf(1:slash)//'.'//this%xmf(slash + 1:)//'.lock'
+         refers = sidecar_refers(this%xmf)
+         if (len(refers) > 0 .and. refers /= base) then
+            errmsg = "XDMF sidecar '"//this%xmf//"' exists and describes '"//refers//"', not '"//base// &
+                     "'; --force replaces only this output's own files: remove it, choose another name "// &
+                     'with -o, or set output:xdmf = .false.'
+            return
+         end if
+      else if (force) then
+         ! the sidecar of the result being replaced would describe the old file: removed at the end
+         if (sidecar_refers(sidecar_name(target)) == base) this%stale = sidecar_name(target)
       end if
       ! the folder must exist and take new files (the system's reason otherwise)
       if (len(dir) == 0) dir = './'
@@ -114,6 +135,8 @@ contains
       if (len(errmsg) > 0) return
       if (sidecar) then
          call check_name(this%xmf_partial, errmsg)
+         if (len(errmsg) > 0) return
+         call check_name(this%xlock, errmsg)
          if (len(errmsg) > 0) return
       end if
       stat = 0
@@ -170,6 +193,20 @@ contains
          errmsg = "cannot lock output '"//this%target//"' ("//this%lock//'): '//sys_strerror(err)
          return
       end if
+      if (len(this%xlock) > 0) then
+         err = sys_lock(this%xlock, this%xfd)
+         if (err /= 0) then
+            this%xfd = -1
+            call this%abandon(.false.)
+            if (err == 11) then
+               errmsg = "XDMF sidecar '"//this%xmf//"' is being written by another run (lock "//this%xlock// &
+                        " held); wait for it or choose another name with -o"
+            else
+               errmsg = "cannot lock XDMF sidecar '"//this%xmf//"' ("//this%xlock//'): '//sys_strerror(err)
+            end if
+            return
+         end if
+      end if
       if (.not. this%force) then
          call sys_path_info(this%target, kind, dev, ino, size, e)
          if (kind /= kind_missing) then
@@ -194,7 +231,8 @@ contains
          err = sys_publish(this%xmf_partial, this%xmf, this%force)
          if (err /= 0) then
             stat = 2
-            errmsg = "cannot move '"//this%xmf_partial//"' to '"//this%xmf//"': "//sys_strerror(err)
+            errmsg = "cannot move '"//this%xmf_partial//"' to '"//this%xmf//"': "//sys_strerror(err)// &
+                     '; the complete result stays in '//this%partial
          end if
       end if
       if (stat == 0) then
@@ -205,9 +243,41 @@ contains
                      '; the complete result stays in '//this%partial
          end if
       end if
+      if (stat == 0 .and. len(this%stale) > 0) err = sys_remove(this%stale)
+      call release(this)
+   end subroutine outpath_publish
+
+   !> Release the locks.
+   subroutine release(this)
+      class(outpath_t), intent(inout) :: this
+      if (this%xfd >= 0) call sys_unlock(this%xlock, this%xfd)
+      this%xfd = -1
       if (this%fd >= 0) call sys_unlock(this%lock, this%fd)
       this%fd = -1
-   end subroutine outpath_publish
+   end subroutine release
+
+   !> The HDF5 file name an existing XDMF sidecar points at ('' if path is no readable file
+   !> or names none): the text before ':' of its first `Format="HDF">` data item.
+   function sidecar_refers(path) result(name)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: name
+      character(len=1024) :: line
+      integer :: unit, ios, k, colon
+      character(len=*), parameter :: key = 'Format="HDF">'
+      name = ''
+      open (newunit=unit, file=path, status='old', action='read', iostat=ios)
+      if (ios /= 0) return
+      do
+         read (unit, '(a)', iostat=ios) line
+         if (ios /= 0) exit
+         k = index(line, key)
+         if (k == 0) cycle
+         colon = index(line(k + len(key):), ':/')
+         if (colon > 1) name = line(k + len(key):k + len(key) + colon - 2)
+         exit
+      end do
+      close (unit)
+   end function sidecar_refers
 
    !> Give up: remove the sidecar's temporary file, the result's one unless keep_partial, and
    !> release the lock. The target files are not touched.
@@ -218,7 +288,6 @@ contains
       if (.not. allocated(this%partial)) return
       if (len(this%xmf_partial) > 0) err = sys_remove(this%xmf_partial)
       if (.not. keep_partial) err = sys_remove(this%partial)
-      if (this%fd >= 0) call sys_unlock(this%lock, this%fd)
-      this%fd = -1
+      call release(this)
    end subroutine outpath_abandon
 end module contact2d_outpath

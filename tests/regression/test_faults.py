@@ -281,6 +281,32 @@ def body(t):
         t.check_equal(name, "one valid result", "converged", c2dtest.attr_str(f.attrs["status"]))
     t.check_equal(name, "no temporary or lock file left", [], leftovers(folder))
 
+    # ---- two outputs that share a sidecar name (run.h5, run.dat: run.xmf) --------------------
+    name = "shared_sidecar"
+    folder = t.subdir(name)
+    a = start(t, folder, t.deck(LONG), LONG_ARGS, out="same.h5")
+    t.require(wait_for(os.path.join(folder, "same.h5.%d.partial" % a.pid)) is not None, name + ": run A writes")
+    before = sorted(os.listdir(folder))
+    rc, err, _ = finish(start(t, folder, quick[0], ["--force"], out="same.dat"))
+    t.check_equal(name, "run B (same.dat, sidecar same.xmf) exit code", 1, rc)
+    t.check(name, "run B refused: the sidecar is being written", len(err) == 1 and "same.xmf" in err[0]
+            and "another run" in err[0], "one line '... same.xmf ... another run ...'", err)
+    t.check_equal(name, "run B created nothing", before, sorted(os.listdir(folder)))
+    a.send_signal(signal.SIGINT)
+    rc, err, _ = finish(a)
+    t.check_equal(name, "run A exit code (interrupted)", 130, rc)
+    x_before = sha(os.path.join(folder, "same.xmf"))
+    rc, err, _ = finish(start(t, folder, quick[0], ["--force"], out="same.dat"))
+    t.check_equal(name, "--force onto another output's sidecar: exit code", 1, rc)
+    t.check(name, "refused, naming the file the sidecar describes", len(err) == 1 and "describes 'same.h5'" in err[0],
+            "one line '... describes 'same.h5' ...'", err)
+    t.check_equal(name, "same.xmf unchanged (sha256)", x_before, sha(os.path.join(folder, "same.xmf")))
+    t.check_equal(name, "no temporary or lock file left", [], leftovers(folder))
+    # --force without a sidecar: the old sidecar would describe the replaced file; it goes
+    rc, err, _ = finish(start(t, folder, quick[0], ["--force", "--set", "output:xdmf=.false."], out="same.h5"))
+    t.check_equal(name, "--force with xdmf off: exit code", 0, rc)
+    t.check_equal(name, "the replaced result's sidecar removed", False, os.path.exists(os.path.join(folder, "same.xmf")))
+
     # ---- a write that fails: file size limit (EFBIG) ----------------------------------------
     name = "write_fails"
     folder = t.subdir(name)
