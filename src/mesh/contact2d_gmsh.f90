@@ -50,6 +50,12 @@ module contact2d_gmsh
          real(c_double), value :: value
          integer(c_int), intent(out) :: ierr
       end subroutine gmshOptionSetNumber_i
+      subroutine gmshOptionGetNumber_i(name, value, ierr) bind(C)
+         import :: c_int, c_char, c_double
+         character(kind=c_char), intent(in) :: name(*)
+         real(c_double), intent(out) :: value
+         integer(c_int), intent(out) :: ierr
+      end subroutine gmshOptionGetNumber_i
       subroutine gmshModelMeshGenerate_i(dim, ierr) bind(C)
          import :: c_int
          integer(c_int), value :: dim
@@ -134,6 +140,7 @@ module contact2d_gmsh
    procedure(gmshFinalize_i), pointer :: gmshFinalize => null()
    procedure(gmshOpen_i), pointer :: gmshOpen => null()
    procedure(gmshOptionSetNumber_i), pointer :: gmshOptionSetNumber => null()
+   procedure(gmshOptionGetNumber_i), pointer :: gmshOptionGetNumber => null()
    procedure(gmshModelMeshGenerate_i), pointer :: gmshModelMeshGenerate => null()
    procedure(gmshModelMeshRefine_i), pointer :: gmshModelMeshRefine => null()
    procedure(gmshModelMeshGetNodes_i), pointer :: gmshModelMeshGetNodes => null()
@@ -231,6 +238,14 @@ contains
          return
       end if
       if (ends_with(path, '.geo')) then
+         ! Gmsh 4.8 (Debian 12) crashes in its quad algorithm 8: refused before meshing
+         if (crashing_algorithm()) then
+            errmsg = "mesh:file = '"//path//"' sets Mesh.Algorithm = 8, which crashes (segfault) the Gmsh "// &
+                     'library older than 4.9 (Debian 12 has 4.8.4); use Mesh.Algorithm = 6 with Mesh.RecombineAll = 1 '// &
+                     '(docs/geometry.md)'
+            call gmshFinalize(ierr2)
+            return
+         end if
          call gmshModelMeshGenerate(2_c_int, ierr)
          if (ierr /= 0) then
             errmsg = "mesh:file = '"//path//"': Gmsh failed to mesh it"//last_error()
@@ -252,6 +267,22 @@ contains
          stat = 1
          errmsg = 'mesh: gmshFinalize failed (ierr = '//str(int(ierr2))//')'
       end if
+   contains
+      !> Mesh.Algorithm = 8 with a Gmsh older than 4.9 (4.8 has no General.MajorVersion option:
+      !> a library that does not say its version counts as old).
+      logical function crashing_algorithm()
+         real(c_double) :: algorithm, major, minor
+         integer(c_int) :: e1, e2, e3
+         call gmshOptionGetNumber(cstr('Mesh.Algorithm'), algorithm, e1)
+         call gmshOptionGetNumber(cstr('General.MajorVersion'), major, e2)
+         call gmshOptionGetNumber(cstr('General.MinorVersion'), minor, e3)
+         crashing_algorithm = .false.
+         if (e1 /= 0) return
+         if (nint(algorithm) /= 8) return
+         crashing_algorithm = .true.
+         if (e2 /= 0 .or. e3 /= 0) return
+         crashing_algorithm = nint(major) < 4 .or. (nint(major) == 4 .and. nint(minor) < 9)
+      end function crashing_algorithm
    end subroutine read_untrapped
 
    !> Load libgmsh and its symbols once (dlopen/dlsym). stat /= 0 with a message if it is missing.
@@ -285,6 +316,9 @@ contains
       call bind_symbol('gmshOptionSetNumber')
       if (stat /= 0) return
       call c_f_procpointer(fun, gmshOptionSetNumber)
+      call bind_symbol('gmshOptionGetNumber')
+      if (stat /= 0) return
+      call c_f_procpointer(fun, gmshOptionGetNumber)
       call bind_symbol('gmshModelMeshGenerate')
       if (stat /= 0) return
       call c_f_procpointer(fun, gmshModelMeshGenerate)

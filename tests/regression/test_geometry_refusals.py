@@ -5,7 +5,7 @@ triangles (a .geo without recombination), a boundary name the mesh lacks (the me
 names it has), a Gamma_c group that is not one chain (bottom and top), an inverted (self-
 intersecting) element in a .msh file (element 12 of geometry/inverted.msh, named by that id, not its index 2), a
 quadrilateral with a node twice (geometry/degenerate.msh), a circle obstacle without its
-centre, a mesh file that does not exist. Each runs in an empty directory with -o out.h5: exit 1,
+centre, a mesh file that does not exist, a .geo with Mesh.Algorithm = 8 (crashes Gmsh 4.8). Each runs in an empty directory with -o out.h5: exit 1,
 exactly one stderr line 'contact2d: error: ...' matching the case's pattern, no out.h5, no out.xmf.
 """
 import os
@@ -14,6 +14,8 @@ import re
 import c2dtest
 
 CASES = [
+    ("algorithm_8", ["--set", "mesh:file='algorithm8.geo'"],
+     r"mesh:file = '[^']*algorithm8\.geo' sets Mesh\.Algorithm = 8, which crashes.*Mesh\.Algorithm = 6"),
     ("triangles", ["--set", "mesh:file='triangles.geo'"],
      r"'Triangle 3'.*4-node quadrilaterals only.*Mesh\.RecombineAll = 1"),
     ("missing_name_contact", ["--set", "contact:boundary='bottm'"],

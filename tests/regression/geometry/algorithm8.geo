@@ -1,0 +1,17 @@
+// Mesh.Algorithm = 8 (frontal-Delaunay for quads), which crashes Gmsh 4.8.4 (Debian 12): refused before meshing.
+Point(1) = {0, 0, 0, 0.3};
+Point(2) = {1, 0, 0, 0.3};
+Point(3) = {1, 1, 0, 0.3};
+Point(4) = {0, 1, 0, 0.3};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Physical Curve("bottom") = {1};
+Physical Curve("top") = {3};
+Physical Curve("two_pieces") = {1, 3};
+Physical Surface("square") = {1};
+Mesh.Algorithm = 8;
+Mesh.RecombineAll = 1;
