@@ -510,8 +510,16 @@ contains
             conv = 'not tested (solver:convergence_test = '''//trim(deck%solver%convergence_test)// &
                    '''); status: '//status
          else
-            conv = 'NO: '//status//' (relative residual '//sci(residual)//', tolerance '// &
-                   sci(deck%solver%tol_residual)//')'
+            conv = 'NO: '//status
+            ! why the steps ended (a blow-up, a contact failure or a signal say so in the status)
+            if (status == 'not converged') then
+               if (solver%step >= deck%solver%max_steps) then
+                  conv = conv//', solver:max_steps = '//str(deck%solver%max_steps)//' reached'
+               else
+                  conv = conv//', solver:t_end = '//sci(deck%solver%t_end)//' s reached'
+               end if
+            end if
+            conv = conv//' (relative residual '//sci(residual)//', tolerance '//sci(deck%solver%tol_residual)//')'
          end if
          rate = real(solver%step, wp)*model%mesh%nel/max(timings(2), 1.0e-9_wp)
          write (output_unit, '(a)') repeat('-', 72)

@@ -371,6 +371,16 @@ def body(t):
         t.check_le(name, "max |u| at the end / peak 1e-3 mm", umax / 1e-3, 1e-6,
                    reason="the load is removed: the unique elastic equilibrium is u = 0")
 
+    # the summary says why an unconverged run stopped
+    for why, args in (("max_steps", ["--set", "solver:max_steps=100"]), ("t_end", ["--set", "solver:t_end=2.1e-6"])):
+        name = "not_converged_" + why
+        folder = t.subdir(name)
+        rc, err, out = finish(start(t, folder, t.deck(PATCH), args))
+        t.check_equal(name, "exit code", 0, rc)
+        line = [l for l in out.splitlines() if l.strip().startswith("converged")]
+        t.check(name, "the summary names the limit reached", bool(line) and ("NO: not converged, solver:%s = " % why)
+                in line[0] and line[0].split("(")[0].rstrip().endswith("reached"), "NO: not converged, solver:%s = ... reached" % why, line)
+
     name = "snapshots_one_step"
     folder = t.subdir(name)
     rc, err, _ = finish(start(t, folder, quick[0], ["--set", "output:snapshot_times=1e-12,2e-12,5e-7"]))
