@@ -9,12 +9,13 @@
 module contact2d_gmsh
    use, intrinsic :: iso_c_binding, only: c_int, c_size_t, c_double, c_char, c_ptr, c_null_ptr, &
                                           c_null_char, c_f_pointer, c_associated, c_funptr, &
-                                          c_f_procpointer
+                                          c_f_procpointer, c_long_long
    use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, ieee_set_flag, &
                                             ieee_all, ieee_usual
    use contact2d_gmsh_config, only: gmsh_library_path
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str
+   use contact2d_sys, only: sys_path_info, kind_file, kind_missing, kind_names
    use contact2d_mesh, only: mesh_t
    use contact2d_renumber, only: rcm_order, group_order
    implicit none
@@ -211,13 +212,16 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       integer(c_int) :: ierr, ierr2
-      logical :: exists
-      integer :: k
+      integer(c_long_long) :: dev, ino, bytes
+      integer :: k, kind, err
 
       stat = 1
-      inquire (file=path, exist=exists)
-      if (.not. exists) then
+      call sys_path_info(path, kind, dev, ino, bytes, err)
+      if (err /= 0 .or. kind == kind_missing) then
          errmsg = "mesh:file = '"//path//"': no such file"
+         return
+      else if (kind /= kind_file) then
+         errmsg = "mesh:file = '"//path//"' is a "//trim(kind_names(kind))//', not a regular file'
          return
       end if
       call load_gmsh(stat, errmsg)

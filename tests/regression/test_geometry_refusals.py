@@ -43,7 +43,12 @@ def body(t):
     deck = os.path.join(t.here, "geometry", "base.nml")
     ok = t.run(deck, name="valid")
     t.expect_exit(ok, 0)
-    for name, args, pattern in CASES:
+    # a directory named like a mesh file (made here, outside the source tree)
+    folder = os.path.join(t.workdir, "a_folder.msh")
+    os.makedirs(folder, exist_ok=True)
+    cases = CASES + [("directory_as_mesh", ["--set", "mesh:file='%s'" % folder],
+                      r"mesh:file = '[^']*a_folder\.msh' is a directory, not a regular file")]
+    for name, args, pattern in cases:
         run = t.run(deck, *args, name=name)
         t.expect_exit(run, 1, stop=False)
         lines = run.stderr_lines()
