@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Compare the end states of two contact2d runs on nested structured meshes (SPEC section 9).
 
-    postproc/compare.py A.h5 B.h5 [--json OUT.json] [--allow-mixed-multipliers]
+    postproc/compare.py A.h5 B.h5 [--json OUT.json [--force]] [--allow-mixed-multipliers]
 
 or, from Python (postproc/ on sys.path):
 
@@ -31,7 +31,10 @@ structured rectangles numbered as SPEC 8, different domains, different base nx:n
 a non-integer refinement ratio (any integer is accepted, not only powers of 2), coarse grid
 lines that are not fine grid lines, different material (E, nu), different multiplier kinds
 (P1 against P0 only with --allow-mixed-multipliers / allow_mixed_multipliers=True), a contact
-boundary in one file only or contact boundaries that are not the same nested chain.
+boundary in one file only or contact boundaries that are not the same nested chain, a run that
+did not finish (status 'running': a crashed run's .partial file). --json refuses, before comparing,
+either input, an existing file (unless --force) and a folder that does not exist; the JSON is
+written to a temporary file beside the target and moved into place (os.replace).
 Differences in the loading, obstacle or friction data are reported as warnings, as are runs that
 did not converge; solver settings may differ freely (that is what speed-versus-accuracy studies
 compare).
@@ -48,6 +51,7 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from c2dh5 import Run  # noqa: E402
 import fem_q1  # noqa: E402
+from outfile import OutputRefused, check_target, replacing  # noqa: E402
 
 ERROR_KEYS = ("energy", "h1", "l2", "max", "pressure_l2", "pressure_max", "shear_l2", "shear_max")
 _LABELS = {
@@ -86,6 +90,9 @@ def _load(path):
         raise CompareError("%s: not a readable HDF5 file (%s)" % (path, exc))
     with run:
         f = run.file
+        status = _str(run.attrs.get("status", "")).strip()
+        if status == "running":
+            raise CompareError("%s: the run did not finish (status 'running')" % path)
         for name in ("mesh/coordinates", "mesh/connectivity", "final/displacement"):
             if name not in f:
                 raise CompareError("%s: no /%s (not a contact2d output file?)" % (path, name))
@@ -389,19 +396,29 @@ def main(argv=None):
                     "structured meshes (the finer file is the reference; B on a tie).")
     ap.add_argument("a", help="first output file (.h5)")
     ap.add_argument("b", help="second output file (.h5); the reference when the meshes are equal")
-    ap.add_argument("--json", metavar="OUT.json", help="also write the results as JSON")
+    ap.add_argument("--json", metavar="OUT.json",
+                    help="also write the results as JSON (never one of the inputs; an existing file "
+                         "only with --force)")
+    ap.add_argument("--force", action="store_true", help="let --json replace an existing file")
     ap.add_argument("--allow-mixed-multipliers", action="store_true",
                     help="allow comparing a P1 run with a P0 run")
     args = ap.parse_args(argv)
     try:
+        if args.json:
+            check_target(args.json, inputs=(args.a, args.b), force=args.force)
         res = compare(args.a, args.b, allow_mixed_multipliers=args.allow_mixed_multipliers)
-    except CompareError as exc:
+    except (CompareError, OutputRefused) as exc:
         print("compare.py: refused: %s" % exc, file=sys.stderr)
         return 2
     if args.json:
-        with open(args.json, "w") as fh:
-            json.dump(_jsonable(res), fh, indent=2)
-            fh.write("\n")
+        try:
+            with replacing(args.json, force=args.force) as tmp:
+                with open(tmp, "w") as fh:
+                    json.dump(_jsonable(res), fh, indent=2)
+                    fh.write("\n")
+        except (OutputRefused, OSError) as exc:
+            print("compare.py: --json not written: %s" % exc, file=sys.stderr)
+            return 2
     try:
         print(format_table(res))
         sys.stdout.flush()

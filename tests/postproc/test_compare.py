@@ -386,6 +386,65 @@ class CommandLine(Base):
             self.assertAlmostEqual(swapped["errors"][k], res["errors"][k], places=14)
 
 
+    def cli(self, *args):
+        return subprocess.run([sys.executable, "-B", os.path.join(POSTPROC, "compare.py")] + list(args),
+                              capture_output=True, text=True)
+
+    def one_line_refusal(self, run, pattern):
+        self.assertEqual(run.returncode, 2, run.stderr)
+        self.assertEqual(run.stdout, "")          # refused before comparing: no table
+        self.assertEqual(len(run.stderr.strip().splitlines()), 1, run.stderr)
+        self.assertRegex(run.stderr, pattern)
+
+    def pair(self):
+        a = write_run(self.path("a.h5"), 1.0, 0.5, 4, 2, lambda x, y: (1e-3 * x, -1e-3 * y))
+        b = write_run(self.path("b.h5"), 1.0, 0.5, 8, 4, lambda x, y: (1.1e-3 * x, -1e-3 * y))
+        return a, b
+
+    def test_json_never_replaces_an_input(self):
+        # the old code wrote the JSON over a.h5 (exit 0), with or without --force
+        a, b = self.pair()
+        for extra in ([], ["--force"]):
+            for target in (a, b, os.path.join(self.dir, ".", "b.h5")):
+                self.one_line_refusal(self.cli(a, b, "--json", target, *extra), "is an input")
+        self.assertTrue(h5py.is_hdf5(a) and h5py.is_hdf5(b))
+
+    def test_json_existing_file_needs_force(self):
+        a, b = self.pair()
+        out = self.path("out.json")
+        with open(out, "w") as fh:
+            fh.write("the user's notes\n")
+        self.one_line_refusal(self.cli(a, b, "--json", out), "exists .*--force")
+        with open(out) as fh:
+            self.assertEqual(fh.read(), "the user's notes\n")
+        run = self.cli(a, b, "--json", out, "--force")
+        self.assertEqual(run.returncode, 0, run.stderr)
+        with open(out) as fh:
+            self.assertEqual(json.load(fh)["reference"], "b")
+        self.assertEqual(sorted(os.listdir(self.dir)), ["a.h5", "b.h5", "out.json"])  # no temporary left
+
+    def test_json_missing_folder_is_refused_before_comparing(self):
+        # the old code compared, printed the table, then died in open() with a traceback
+        a, b = self.pair()
+        run = self.cli(a, b, "--json", os.path.join(self.dir, "no_such_dir", "x.json"))
+        self.one_line_refusal(run, "does not exist")
+        self.assertNotIn("Traceback", run.stderr)
+
+    def test_unfinished_run_is_named(self):
+        # a crashed run's OUT.h5.<pid>.partial: status 'running', no /final
+        a, b = self.pair()
+        part = self.path("b.h5.1234.partial")
+        with h5py.File(b, "r") as src, h5py.File(part, "w") as f:
+            src.copy("mesh", f)
+            for k, v in src.attrs.items():
+                f.attrs[k] = v
+            f.attrs["status"] = "running"
+            f.attrs["converged"] = 0
+        self.one_line_refusal(self.cli(a, part), r"did not finish \(status 'running'\)")
+        with self.assertRaisesRegex(cmp.CompareError, "did not finish"):
+            cmp.compare(a, part)
+
+
 @unittest.skipUnless(os.environ.get("CONTACT2D"), "set CONTACT2D=path/to/contact2d to run")
 class RealRuns(Base):
     def test_patch_scene_levels_0_and_1(self):
