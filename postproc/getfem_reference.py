@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Independent static reference for contact2d: the same discrete problem solved by GetFEM.
 
-    postproc/getfem_reference.py IN.h5 -o REF.h5 [--multiplier P1|P0]
+    postproc/getfem_reference.py IN.h5 -o REF.h5 [--force] [--multiplier P1|P0]
         [--friction frictionless|tresca] [--tol 1e-12]
 
 IN.h5 is any contact2d output file (SPEC section 8): its mesh, effective deck and contact
@@ -22,7 +22,9 @@ boundary define the problem. The script solves, in one shot, the static problem 
                      projection onto [-s, s], solved by the same semismooth Newton.
 
 and writes the solution in contact2d's layout (root attribute program = 'getfem_reference'), so the
-compare tools read it. docs/getfem_reference.md says what is solved, how, and how well.
+compare tools read it. REF.h5 is never IN.h5, an existing REF.h5 is replaced only with --force,
+and a missing folder is refused before solving (one line, exit 2); the file is written to a
+temporary file beside REF.h5 and moved into place (os.replace). docs/getfem_reference.md says what is solved, how, and how well.
 
 Needs python3-getfem (Debian, 5.4), numpy, h5py; reads the input with postproc/c2dh5.py.
 """
@@ -36,6 +38,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from c2dh5 import parse_effective_deck  # noqa: E402
+from outfile import OutputRefused, check_target, replacing  # noqa: E402
 
 PROGRAM = "getfem_reference"
 VERSION = "1.0"
@@ -724,7 +727,9 @@ def main(argv=None):
     p = argparse.ArgumentParser(description="GetFEM static reference for a contact2d output file (same mesh, deck, "
                                 "contact boundary); writes the solution in contact2d's HDF5 layout.")
     p.add_argument("input", help="contact2d output file (.h5)")
-    p.add_argument("-o", "--output", required=True, help="reference file to write (.h5)")
+    p.add_argument("-o", "--output", required=True,
+                   help="reference file to write (.h5; never the input, an existing file only with --force)")
+    p.add_argument("--force", action="store_true", help="replace an existing output file")
     p.add_argument("--multiplier", choices=["P1", "P0"], help="default: the deck's")
     p.add_argument("--friction", choices=["frictionless", "tresca"], help="default: the deck's")
     p.add_argument("--tol", type=float, default=1e-12,
@@ -739,6 +744,11 @@ def main(argv=None):
                    help="factor on the Tresca augmentation parameter (default 1: 0.01 E/h)")
     p.add_argument("--noisy", action="store_true", help="print every Newton iteration as it happens")
     args = p.parse_args(argv)
+    try:
+        check_target(args.output, inputs=(args.input,), force=args.force)
+    except OutputRefused as e:
+        print("getfem_reference: refused: %s" % e, file=sys.stderr)
+        return 2
     try:
         prob = read_problem(args.input, args.multiplier, args.friction)
     except Refused as e:
@@ -760,7 +770,12 @@ def main(argv=None):
     # and the multipliers' forces are the ones equilibrium sees (guards the dof/multiplier mapping)
     info["converged"] = (info["getfem_converged"] and dg["relative_residual"] < max(1e3 * args.tol, 1e-9)
                          and dg.get("contact_force_mismatch", 0.0) < 1e-8)
-    write_output(args.output, prob, info, out, args)
+    try:
+        with replacing(args.output, force=args.force) as tmp:
+            write_output(tmp, prob, info, out, args)
+    except (OutputRefused, OSError) as e:
+        print("getfem_reference: %s not written: %s" % (args.output, e), file=sys.stderr)
+        return 2
     nel = prob["conn"].shape[0]
     what = "no contact" if c is None else "%s, %s, %s" % (c["multiplier"], c["friction"], info["normal_kind"])
     print("getfem_reference: %s -> %s" % (args.input, args.output))

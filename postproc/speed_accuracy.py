@@ -85,7 +85,7 @@ def main():
                 gf = out / f"getfem_{m}_k{k}.h5"
                 if not (args.reuse and gf.is_file()):
                     proc = subprocess.run(["/usr/bin/python3", str(ROOT / "postproc" / "getfem_reference.py"), str(src),
-                                           "-o", str(gf), "--friction", "tresca"], capture_output=True, text=True)
+                                           "-o", str(gf), "--force", "--friction", "tresca"], capture_output=True, text=True)
                     if proc.returncode != 0:
                         print(f"GetFEM {m} k={k}: {proc.stderr.strip()}")
                         continue

@@ -184,5 +184,43 @@ class GetfemReference(unittest.TestCase):
         self.assertEqual(len(p.stderr.strip().splitlines()), 1, p.stderr)
 
 
+
+class OutputRefusals(unittest.TestCase):
+    """-o is checked before anything is read or solved (so these need no GetFEM)."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.dir = self.tmp.name
+        self.inp = os.path.join(self.dir, "run.h5")
+        write_input(self.inp, 1.0, 0.5, 4, 2, PATCH, contact("P1"))
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def refused(self, proc, pattern):
+        self.assertEqual(proc.returncode, 2, proc.stderr)
+        self.assertEqual(len(proc.stderr.strip().splitlines()), 1, proc.stderr)
+        self.assertRegex(proc.stderr, pattern)
+
+    def test_never_the_input(self):
+        # the old code solved and then wrote the reference over the user's contact2d run
+        for extra in ((), ("--force",)):
+            self.refused(run(self.inp, self.inp, *extra), "is an input")
+            self.refused(run(self.inp, os.path.join(self.dir, ".", "run.h5"), *extra), "is an input")
+        with h5py.File(self.inp, "r") as f:
+            self.assertEqual(f.attrs["program"], "synthetic")
+
+    def test_existing_output_needs_force(self):
+        out = os.path.join(self.dir, "ref.h5")
+        with open(out, "w") as fh:
+            fh.write("the user's file\n")
+        self.refused(run(self.inp, out), "exists .*--force")
+        with open(out) as fh:
+            self.assertEqual(fh.read(), "the user's file\n")
+
+    def test_missing_folder(self):
+        self.refused(run(self.inp, os.path.join(self.dir, "no_such_dir", "ref.h5")), "does not exist")
+
+
 if __name__ == "__main__":
     unittest.main()
