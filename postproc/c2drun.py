@@ -1,14 +1,17 @@
 """Run contact2d from Python scripts (studies, sweeps, benchmarks).
 
-    from c2drun import find_exe, run, strip_group
+    from c2drun import find_exe, run, strip_group, parse_levels, out_dir
     res = run(find_exe(), "inputs/baillet_sassi_2002_p1.nml", "out.h5", {"mesh:level": 3})
     res.returncode, res.seconds, res.stderr
+    parse_levels("0-2") == parse_levels("0,1,2") == [0, 1, 2]   # ValueError (one line) otherwise
+    out_dir("study/x", "hertz_study.py")   # mkdir -p, or one line on stderr and exit 2
 
 Only the standard library is needed.
 """
 import os
 import re
 import subprocess
+import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -58,6 +61,48 @@ def run(exe, deck, output, sets=None, threads=None, reuse=False, timeout=None):
     t0 = time.perf_counter()
     proc = subprocess.run(args, capture_output=True, text=True, env=env, timeout=timeout)
     return Result(proc.returncode, time.perf_counter() - t0, proc.stdout, proc.stderr, output)
+
+
+def parse_levels(text):
+    """Mesh levels of a study's command line: 'a-b' (a range), 'a,b,c' or 'a'; sorted, distinct.
+    ValueError with a one-line message otherwise."""
+    t = str(text).replace(" ", "")
+    try:
+        if "-" in t:
+            a, b = t.split("-")
+            out = list(range(int(a), int(b) + 1))
+        else:
+            out = sorted({int(x) for x in t.split(",")})
+    except ValueError:
+        raise ValueError(f"'{text}' is not a list of mesh levels (e.g. 0-2, 0,1,2 or 2)") from None
+    if not out:
+        raise ValueError(f"'{text}' is an empty range of mesh levels (write the smaller level first)")
+    if out[0] < 0:
+        raise ValueError(f"'{text}': mesh levels are >= 0")
+    return out
+
+
+def levels_or_exit(text, option, prog):
+    """parse_levels, or one line on stderr naming the option and exit status 2."""
+    try:
+        return parse_levels(text)
+    except ValueError as exc:
+        print(f"{prog}: refused: {option} {exc}", file=sys.stderr)
+        sys.exit(2)
+
+
+def out_dir(path, prog):
+    """Create the study folder path (and its parents); one line on stderr and exit 2 if it cannot be."""
+    p = Path(path)
+    if p.exists() and not p.is_dir():
+        print(f"{prog}: refused: --out {p} exists and is not a folder", file=sys.stderr)
+        sys.exit(2)
+    try:
+        p.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        print(f"{prog}: refused: --out {p}: {exc.strerror or exc}", file=sys.stderr)
+        sys.exit(2)
+    return p
 
 
 def strip_group(deck_text, group):

@@ -2,15 +2,19 @@
 """Geometry verification study (issue 10): Hertz and Lame across Gmsh refinement levels.
 
     /usr/bin/python3 postproc/hertz_study.py [--levels 0-2] [--lame-levels 0-4] [--out study/geometry]
+                                             [--reuse] [--update-docs]
 
 Runs inputs/hertz_indenter_<m>.nml and inputs/hertz_cylinder_<m>.nml (m = p1, p0) at the Hertz
 levels, inputs/lame_cavity_<m>.nml at the Lame levels, measures them with postproc/hertz.py and
-postproc/lame.py, and writes
-  docs/figures/hertz_pressure.png     p(x) of the runs (P1 and P0) against Hertz, per scene
-  docs/figures/hertz_convergence.png  relative L2 error of p on Gamma_c against the contact edge
-                                      size h at x = 0 (Hertz) and energy-norm error against h (Lame)
-  docs/geometry_study.md              the table of every run (printed too)
-Outputs of the runs go to --out (kept: --reuse skips runs whose output exists).
+postproc/lame.py, and writes into --out
+  hertz_pressure.png     p(x) of the runs (P1 and P0) against Hertz, per scene
+  hertz_convergence.png  relative L2 error of p on Gamma_c against the contact edge size h at
+                         x = 0 (Hertz) and energy-norm error against h (Lame)
+  geometry_study.md      the table of every run (printed too)
+With --update-docs they go instead to the tracked docs/figures/hertz_pressure.png,
+docs/figures/hertz_convergence.png and docs/geometry_study.md (docs/geometry.md, "Study").
+Outputs of the runs go to --out (kept: --reuse skips a run whose output is a finished run of the
+same deck and level, see postproc/c2drun.py).
 """
 import argparse
 import sys
@@ -21,29 +25,39 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import hertz  # noqa: E402
 import lame  # noqa: E402
-from c2drun import ROOT, find_exe, run  # noqa: E402
+from c2drun import ROOT, find_exe, levels_or_exit, out_dir, run  # noqa: E402
 
-
-def levels(text):
-    a, _, b = text.partition("-")
-    return list(range(int(a), int(b or a) + 1))
+PROG = "hertz_study.py"
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--levels", default="0-2")
-    ap.add_argument("--lame-levels", default="0-4")
-    ap.add_argument("--out", default=str(ROOT / "study" / "geometry"))
-    ap.add_argument("--exe")
-    ap.add_argument("--reuse", action="store_true")
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--levels", default="0-2",
+                    help="Hertz mesh levels, e.g. 0-2, 0,1 or 2 (default 0-2)")
+    ap.add_argument("--lame-levels", default="0-4",
+                    help="Lame mesh levels, same forms (default 0-4)")
+    ap.add_argument("--out", default=str(ROOT / "study" / "geometry"),
+                    help="folder of the runs, and of the table and figures without --update-docs "
+                         "(default study/geometry)")
+    ap.add_argument("--exe", help="contact2d executable (default build/bin/contact2d)")
+    ap.add_argument("--reuse", action="store_true",
+                    help="keep a run whose output in --out is a finished run of the same deck and level")
+    ap.add_argument("--update-docs", action="store_true",
+                    help="write the table and figures over the tracked docs/geometry_study.md and "
+                         "docs/figures/hertz_*.png instead of into --out")
     args = ap.parse_args()
+    hertz_levels = levels_or_exit(args.levels, "--levels", PROG)
+    lame_levels = levels_or_exit(args.lame_levels, "--lame-levels", PROG)
+    out = out_dir(args.out, PROG)
     exe = find_exe(args.exe)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    if args.update_docs:
+        figs, table = ROOT / "docs" / "figures", ROOT / "docs" / "geometry_study.md"
+    else:
+        figs, table = out, out / "geometry_study.md"
     rows, hz, lm = [], {}, {}
     for scene in ("indenter", "cylinder"):
         for m in ("p1", "p0"):
-            for k in levels(args.levels):
+            for k in hertz_levels:
                 h5 = out / f"hertz_{scene}_{m}_k{k}.h5"
                 res = run(exe, ROOT / "inputs" / f"hertz_{scene}_{m}.nml", h5, {"mesh:level": k},
                           reuse=args.reuse)
@@ -59,7 +73,7 @@ def main():
     lrows = []
     for m in ("p1", "p0"):
         prev = None
-        for k in levels(args.lame_levels):
+        for k in lame_levels:
             h5 = out / f"lame_cavity_{m}_k{k}.h5"
             res = run(exe, ROOT / "inputs" / f"lame_cavity_{m}.nml", h5, {"mesh:level": k}, reuse=args.reuse)
             if res.returncode != 0:
@@ -75,7 +89,6 @@ def main():
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    figs = ROOT / "docs" / "figures"
     fig, axes = plt.subplots(2, 2, figsize=(11, 8), sharey="row")
     for i, scene in enumerate(("indenter", "cylinder")):
         for j, m in enumerate(("p1", "p0")):
@@ -112,8 +125,9 @@ def main():
         ks = sorted(k for (mm, k) in lm if mm == m)
         axes[1].loglog([lm[(m, k)]["h"] for k in ks], [lm[(m, k)]["energy_rel"] for k in ks], "o-",
                        label=f"Lame {m.upper()}")
-    hh = np.array([lm[("p1", k)]["h"] for k in sorted(k for (mm, k) in lm if mm == "p1")])
-    axes[1].loglog(hh, lm[("p1", 0)]["energy_rel"] * hh / hh[0], "k:", label="slope 1")
+    k1 = sorted(k for (mm, k) in lm if mm == "p1")
+    hh = np.array([lm[("p1", k)]["h"] for k in k1])
+    axes[1].loglog(hh, lm[("p1", k1[0])]["energy_rel"] * hh / hh[0], "k:", label="slope 1")
     axes[1].set_xlabel("largest element edge h [mm]")
     axes[1].set_ylabel("relative energy-norm error")
     axes[1].set_title("Lame: energy-norm error")
@@ -132,8 +146,8 @@ def main():
             "(h = largest element edge).", "",
             "| deck | level | elements | h [mm] | p_c [MPa] | max pressure error | energy error | rate | wall [s] |",
             "|---|---|---|---|---|---|---|---|---|"] + lrows + [""]
-    (ROOT / "docs" / "geometry_study.md").write_text("\n".join(text))
-    print("wrote docs/geometry_study.md, docs/figures/hertz_pressure.png, docs/figures/hertz_convergence.png")
+    table.write_text("\n".join(text))
+    print(f"wrote {table}, {figs / 'hertz_pressure.png'}, {figs / 'hertz_convergence.png'}")
 
 
 if __name__ == "__main__":

@@ -26,17 +26,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, run  # noqa: E402
+from c2drun import ROOT, find_exe, parse_levels, run  # noqa: E402
 from compare import compare  # noqa: E402
 
 MULTIPLIERS = ("P1", "P0")
-
-
-def parse_levels(text):
-    if "-" in text:
-        a, b = text.split("-")
-        return list(range(int(a), int(b) + 1))
-    return [int(x) for x in text.split(",")]
 
 
 def h_of(level):

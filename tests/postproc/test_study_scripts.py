@@ -1,0 +1,105 @@
+#!/usr/bin/python3
+"""Tests of the study scripts' command lines (postproc/hertz_study.py, paper_study.py, c2drun.py).
+
+    CONTACT2D=build/bin/contact2d /usr/bin/python3 tests/postproc/test_study_scripts.py [-v]
+
+What a study writes and what it reuses: tracked docs only when asked, runs reused only when they
+are finished runs of the same settings, one line (not a traceback) for a bad option. The tests
+that run contact2d need CONTACT2D (set by ctest) and are skipped without it; the hertz_study ones
+need Gmsh too. Scripts that write into the source tree are run from a copy of postproc/ in a
+temporary tree, so the repository's docs are never touched.
+"""
+import hashlib
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import unittest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+POSTPROC = os.path.join(ROOT, "postproc")
+sys.path.insert(0, POSTPROC)
+sys.dont_write_bytecode = True  # leave no __pycache__ in postproc/
+
+EXE = os.environ.get("CONTACT2D")
+DOCS = ("docs/geometry_study.md", "docs/figures/hertz_pressure.png", "docs/figures/hertz_convergence.png")
+
+
+def digest(path):
+    with open(path, "rb") as fh:
+        return hashlib.sha256(fh.read()).hexdigest()
+
+
+class Base(unittest.TestCase):
+    def setUp(self):
+        self._tmp = tempfile.TemporaryDirectory()
+        self.dir = self._tmp.name
+
+    def tearDown(self):
+        self._tmp.cleanup()
+
+    def path(self, *names):
+        return os.path.join(self.dir, *names)
+
+    def script(self, name, *args, root=ROOT):
+        return subprocess.run([sys.executable, "-B", os.path.join(root, "postproc", name)] + list(args),
+                              capture_output=True, text=True, timeout=900)
+
+    def one_line(self, proc, pattern, status=2):
+        self.assertEqual(proc.returncode, status, proc.stderr)
+        self.assertEqual(len(proc.stderr.strip().splitlines()), 1, proc.stderr)
+        self.assertNotIn("Traceback", proc.stderr)
+        self.assertRegex(proc.stderr, pattern)
+
+
+class HertzStudy(Base):
+    def test_help_describes_every_option(self):
+        out = self.script("hertz_study.py", "--help").stdout
+        for opt, text in (("--levels", "Hertz mesh levels"), ("--lame-levels", "Lame mesh levels"),
+                          ("--out", "folder of the runs"), ("--exe", "contact2d executable"),
+                          ("--reuse", "finished run"), ("--update-docs", "docs/geometry_study.md")):
+            self.assertIn(opt, out)
+            self.assertIn(text, " ".join(out.split()), opt)
+
+    def test_bad_levels_are_one_line(self):
+        for opt, val in (("--levels", "x"), ("--levels", "2-1"), ("--lame-levels", "1-")):
+            self.one_line(self.script("hertz_study.py", opt, val, "--out", self.path("o")), "refused: " + opt)
+        self.assertFalse(os.path.exists(self.path("o")))
+
+    @unittest.skipUnless(EXE and shutil.which("gmsh"), "needs CONTACT2D and gmsh")
+    def test_docs_written_only_with_update_docs(self):
+        # a copy of the tree: postproc/ copied, inputs/ linked, the three tracked docs copied
+        root = self.path("tree")
+        shutil.copytree(POSTPROC, os.path.join(root, "postproc"),
+                        ignore=shutil.ignore_patterns("__pycache__"))
+        os.symlink(os.path.join(ROOT, "inputs"), os.path.join(root, "inputs"))
+        for d in DOCS:
+            os.makedirs(os.path.dirname(os.path.join(root, d)), exist_ok=True)
+            shutil.copy(os.path.join(ROOT, d), os.path.join(root, d))
+        before = {d: digest(os.path.join(root, d)) for d in DOCS}
+        out = self.path("out")
+        # the old code wrote the docs whatever --out was
+        p = self.script("hertz_study.py", "--exe", EXE, "--levels", "0", "--lame-levels", "0-1", "--out", out,
+                        root=root)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        self.assertEqual({d: digest(os.path.join(root, d)) for d in DOCS}, before)
+        for name in ("geometry_study.md", "hertz_pressure.png", "hertz_convergence.png"):
+            self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
+        # '0,1' (ValueError in the old code) and a single Lame level other than 0 (KeyError ('p1', 0))
+        p = self.script("hertz_study.py", "--exe", EXE, "--levels", "0,1", "--lame-levels", "1-1", "--out", out,
+                        "--reuse", "--update-docs", root=root)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        after = {d: digest(os.path.join(root, d)) for d in DOCS}
+        for d in DOCS:
+            self.assertNotEqual(after[d], before[d], d)
+        with open(os.path.join(root, "docs", "geometry_study.md")) as fh:
+            table = fh.read()
+        self.assertIn("| hertz_indenter_p1 | 1 |", table)
+        self.assertIn("| lame_cavity_p0 | 1 |", table)
+        self.assertNotIn("| lame_cavity_p0 | 0 |", table)
+
+
+if __name__ == "__main__":
+    unittest.main()
