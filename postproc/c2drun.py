@@ -6,7 +6,12 @@
     parse_levels("0-2") == parse_levels("0,1,2") == [0, 1, 2]   # ValueError (one line) otherwise
     out_dir("study/x", "hertz_study.py")   # mkdir -p, or one line on stderr and exit 2
 
-Only the standard library is needed.
+run(..., reuse=True) keeps an existing output only when reuse_problem() finds nothing against it:
+a finished contact2d run (status in FINISHED, per method) of the same deck text, by the same
+method, whose effective deck holds every value of `sets` (the &output group excepted: it does not
+change the results); otherwise the run is redone and one line says why.
+
+Only the standard library is needed, and h5py (postproc/c2dh5.py) for reuse.
 """
 import os
 import re
@@ -27,6 +32,10 @@ def find_exe(explicit=None):
     raise SystemExit("contact2d executable not found: build it (.ci/bootstrap build) or pass --exe")
 
 
+FINISHED = {"explicit": ("converged", "not converged", "dynamic", "no convergence test"),
+            "static": ("converged",)}
+
+
 @dataclass
 class Result:
     returncode: int
@@ -34,6 +43,7 @@ class Result:
     stdout: str
     stderr: str
     output: str
+    reused: bool = False
 
 
 def _fmt(value):
@@ -46,13 +56,71 @@ def _fmt(value):
     return str(value)
 
 
-def run(exe, deck, output, sets=None, threads=None, reuse=False, timeout=None):
-    """Run one deck; sets maps 'group:variable' to a Python value. With reuse=True an existing
-    output file from an earlier, finished run is kept and the run skipped (returncode 0)."""
+def _same_value(want, have):
+    if isinstance(want, (list, tuple)):
+        have = have if isinstance(have, list) else [have]
+        return len(want) == len(have) and all(_same_value(a, b) for a, b in zip(want, have))
+    if isinstance(want, bool) or isinstance(have, bool):
+        return want is have
+    if isinstance(want, str) or isinstance(have, str):
+        return str(want).strip().lower() == str(have).strip().lower()
+    a, b = float(want), float(have)
+    return a == b or abs(a - b) <= 1e-12 * max(abs(a), abs(b))
+
+
+def reuse_problem(output, deck, sets=None, method="explicit", statuses=None):
+    """None when output is a finished run that run(deck, output, sets) would make again, else why not
+    (a few words). statuses: the accepted final statuses (default FINISHED[method])."""
+    import h5py
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from c2dh5 import parse_effective_deck
+
+    def text(v):
+        return v.decode() if isinstance(v, bytes) else str(v)
+
+    try:
+        with h5py.File(str(output), "r") as f:
+            attrs = {k: f.attrs[k] for k in ("program", "status", "method", "deck", "effective_deck")
+                     if k in f.attrs}
+    except OSError:
+        return "not a readable HDF5 file"
+    if text(attrs.get("program", "")) != "contact2d":
+        return "not a contact2d output file"
+    status = text(attrs.get("status", "?"))
+    if status not in (statuses or FINISHED[method]):
+        return f"status '{status}'"
+    if text(attrs.get("method", "?")) != method:
+        return f"method '{text(attrs.get('method', '?'))}', not '{method}'"
+    try:
+        deck_text = Path(deck).read_text()
+    except OSError:
+        deck_text = None
+    if deck_text is None or text(attrs.get("deck", "")) != deck_text:
+        return f"made from another text of {Path(deck).name}"
+    eff = parse_effective_deck(text(attrs.get("effective_deck", "")))
+    for key, want in (sets or {}).items():
+        group, _, var = key.partition(":")
+        if group.lower() == "output":
+            continue
+        g = eff.get(group.lower())
+        have = g.get(var.lower()) if isinstance(g, dict) else None
+        if have is None or not _same_value(want, have):
+            return f"{key} = {have if have is not None else '?'}, not {_fmt(want)}"
+    return None
+
+
+def run(exe, deck, output, sets=None, threads=None, reuse=False, timeout=None, static=False):
+    """Run one deck; sets maps 'group:variable' to a Python value; static adds --static. With
+    reuse=True an existing output that reuse_problem() accepts is kept and the run skipped
+    (returncode 0, reused True); any other existing file is rerun, with one line saying why."""
     output = str(output)
     if reuse and Path(output).is_file():
-        return Result(0, 0.0, "", "", output)
-    args = [exe, str(deck), "-q", "-o", output, "--force"]
+        why = reuse_problem(output, deck, sets, method="static" if static else "explicit")
+        if why is None:
+            return Result(0, 0.0, "", "", output, reused=True)
+        print(f"rerunning {output}: {why}", flush=True)
+    args = [exe, str(deck), "-q", "-o", output, "--force"] + (["--static"] if static else [])
     for key, value in (sets or {}).items():
         args += ["--set", f"{key}={_fmt(value)}"]
     env = dict(os.environ)

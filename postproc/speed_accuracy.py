@@ -37,7 +37,8 @@ def main():
     ap.add_argument("--out", default="study/speed_accuracy")
     ap.add_argument("--threads", type=int, default=1, help="OMP_NUM_THREADS of the timed runs (default 1)")
     ap.add_argument("--no-getfem", action="store_true")
-    ap.add_argument("--reuse", action="store_true", help="keep finished runs (their timings too)")
+    ap.add_argument("--reuse", action="store_true",
+                    help="keep runs that finished with the same deck and settings (their timings too)")
     args = ap.parse_args()
     exe = find_exe(args.exe)
     out = Path(args.out)
@@ -52,10 +53,11 @@ def main():
             ref = out / f"ref_{m}_k{levels[-1] + 1}.h5"
             if not ref.is_file():
                 print(f"making the reference {ref} (no {args.reference_dir}/{m}_k6.h5)", flush=True)
-                res = run(exe, ROOT / "inputs" / f"baillet_sassi_2002_{m}.nml", ref,
-                          {"mesh:level": levels[-1] + 1, "solver:tol_residual": 1e-10, "output:xdmf": False})
-                if res.returncode != 0:
-                    sys.exit(res.stderr)
+            res = run(exe, ROOT / "inputs" / f"baillet_sassi_2002_{m}.nml", ref,
+                      {"mesh:level": levels[-1] + 1, "solver:tol_residual": 1e-10, "output:xdmf": False},
+                      reuse=True)
+            if res.returncode != 0:
+                sys.exit(res.stderr)
         refs[m] = ref
     print(f"references: {refs['p1']}, {refs['p0']}")
 

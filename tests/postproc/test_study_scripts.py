@@ -101,5 +101,72 @@ class HertzStudy(Base):
         self.assertNotIn("| lame_cavity_p0 | 0 |", table)
 
 
+
+@unittest.skipUnless(EXE, "set CONTACT2D=path/to/contact2d to run")
+class Reuse(Base):
+    """c2drun.run(reuse=True) and paper_study.py keep a file only when it is the run they would make."""
+
+    def attrs(self, h5):
+        import h5py
+        from c2dh5 import parse_effective_deck
+        with h5py.File(h5, "r") as f:
+            a = dict(f.attrs)
+        return a, parse_effective_deck(a["effective_deck"])
+
+    def test_c2drun_reuses_only_the_same_finished_run(self):
+        import h5py
+        import c2drun
+        deck = os.path.join(self.dir, "patch.nml")
+        shutil.copy(os.path.join(ROOT, "inputs", "patch_compression_p1.nml"), deck)
+        h5 = self.path("patch.h5")
+        sets = {"mesh:level": 0, "solver:tol_residual": 1e-7, "output:xdmf": False}
+        self.assertEqual(c2drun.run(EXE, deck, h5, sets).returncode, 0)
+        res = c2drun.run(EXE, deck, h5, dict(sets, **{"output:xdmf": True}), reuse=True)
+        self.assertTrue(res.reused)               # &output does not change the results
+        # another tolerance: the old code kept the 1e-7 run
+        res = c2drun.run(EXE, deck, h5, dict(sets, **{"solver:tol_residual": 1e-9}), reuse=True)
+        self.assertEqual(res.returncode, 0, res.stderr)
+        self.assertEqual(self.attrs(h5)[1]["solver"]["tol_residual"], 1e-9)
+        self.assertFalse(res.reused)
+        sets["solver:tol_residual"] = 1e-9
+        # an interrupted run (SIGINT): the old code kept it
+        with h5py.File(h5, "r+") as f:
+            f.attrs["status"] = "interrupted"
+        res = c2drun.run(EXE, deck, h5, sets, reuse=True)
+        self.assertEqual(self.attrs(h5)[0]["status"], "converged")
+        self.assertFalse(res.reused)
+        # a --static run of the same deck is not an explicit run
+        self.assertEqual(c2drun.run(EXE, deck, h5, sets, static=True).returncode, 0)
+        self.assertFalse(c2drun.run(EXE, deck, h5, sets, reuse=True).reused)
+        self.assertEqual(self.attrs(h5)[0]["method"], "explicit")
+        # the deck was edited since
+        with open(deck, "a") as fh:
+            fh.write("! edited\n")
+        self.assertFalse(c2drun.run(EXE, deck, h5, sets, reuse=True).reused)
+        self.assertTrue(c2drun.run(EXE, deck, h5, sets, reuse=True).reused)
+
+    def test_paper_study_tol_and_static(self):
+        out = self.path("paper")
+        p = self.script("paper_study.py", "--exe", EXE, "--levels", "0-1", "--tol", "1e-4", "--out", out)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        # the default --tol: the old code reused the 1e-4 runs silently
+        p = self.script("paper_study.py", "--exe", EXE, "--levels", "0-1", "--out", out)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        self.assertIn("rerunning", p.stdout)
+        self.assertNotIn("reusing", p.stdout)
+        for name in ("p1_k0.h5", "p1_k1.h5", "p0_k0.h5", "p0_k1.h5"):
+            self.assertEqual(self.attrs(os.path.join(out, name))[1]["solver"]["tol_residual"], 1e-10, name)
+        # a --static file under a run's name is rerun (the old code reused it: status 'converged')
+        h5 = os.path.join(out, "p1_k0.h5")
+        subprocess.run([EXE, os.path.join(ROOT, "inputs", "baillet_sassi_2002_p1.nml"), "--static", "-q",
+                        "-o", h5, "--force", "--set", "mesh:level=0", "--set", "solver:tol_residual=1e-10"],
+                       check=True, capture_output=True)
+        self.assertEqual(self.attrs(h5)[0]["method"], "static")
+        p = self.script("paper_study.py", "--exe", EXE, "--levels", "0-1", "--out", out)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        self.assertIn("rerunning %s" % h5, p.stdout)
+        self.assertEqual(self.attrs(h5)[0]["method"], "explicit")
+
+
 if __name__ == "__main__":
     unittest.main()
