@@ -27,7 +27,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, parse_levels, reuse_problem, run  # noqa: E402
+from c2drun import ROOT, find_exe, levels_or_exit, out_dir, reuse_problem, run  # noqa: E402
 from compare import compare  # noqa: E402
 
 MULTIPLIERS = ("P1", "P0")
@@ -37,9 +37,10 @@ def h_of(level):
     return 0.1 / 2**level
 
 
-def lsq_slope(h, e):
-    """Least-squares slope of log e against log h."""
-    h, e = np.asarray(h, float), np.asarray(e, float)
+def lsq_slope(points):
+    """Least-squares slope of log e against log h over the (h, e) pairs; nan with fewer than 2."""
+    h = np.array([p[0] for p in points], float)
+    e = np.array([p[1] for p in points], float)
     ok = e > 0
     if ok.sum() < 2:
         return float("nan")
@@ -57,9 +58,8 @@ def main():
     args = ap.parse_args()
 
     exe = find_exe(args.exe)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    levels = parse_levels(args.levels)
+    levels = levels_or_exit(args.levels, "--levels", "paper_study.py")
+    out = out_dir(args.out, "paper_study.py")
     ref_level = max(levels)
 
     # 1. runs
@@ -117,6 +117,13 @@ def main():
         print(f"{r['multiplier']:3s}{r['level']:3d} {r['h']:9.2e} {f('energy')} {f('h1')} {f('pressure_l2')} | "
               f"{f('diff_energy')} {f('diff_h1')} {f('diff_pressure_l2')}")
 
+    if len(levels) < 2:
+        print(f"\none level ({levels[0]}): no errors, rates or convergence.png (they need two levels or more)")
+        plot_fig1(files["P1", ref_level], out / "fig1_vertical_displacement.png")
+        plot_fig3(files, levels, out / "fig3_contact_stress.png")
+        p1_sign(files, levels, out / "p1_sign.csv")
+        return
+
     rates = []
     for m in MULTIPLIERS:
         rr = [r for r in rows if r["multiplier"] == m]
@@ -124,13 +131,13 @@ def main():
             vs_ref = [(r["h"], r[measure]) for r in rr if measure in r]
             diff = [(r["h"], r["diff_" + measure]) for r in rr if "diff_" + measure in r]
             rates.append(dict(multiplier=m, measure=measure, way="against finest", levels="all",
-                              rate=lsq_slope(*zip(*vs_ref))))
+                              rate=lsq_slope(vs_ref)))
             rates.append(dict(multiplier=m, measure=measure, way="against finest", levels="three finest",
-                              rate=lsq_slope(*zip(*vs_ref[-3:]))))
+                              rate=lsq_slope(vs_ref[-3:])))
             rates.append(dict(multiplier=m, measure=measure, way="successive differences", levels="all",
-                              rate=lsq_slope(*zip(*diff))))
+                              rate=lsq_slope(diff)))
             rates.append(dict(multiplier=m, measure=measure, way="successive differences", levels="three finest",
-                              rate=lsq_slope(*zip(*diff[-3:]))))
+                              rate=lsq_slope(diff[-3:])))
     with open(out / "rates.csv", "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rates[0]))
         w.writeheader()

@@ -168,5 +168,31 @@ class Reuse(Base):
         self.assertEqual(self.attrs(h5)[0]["method"], "explicit")
 
 
+
+class PaperStudy(Base):
+    def test_out_that_is_a_file(self):
+        # the old code: FileExistsError traceback
+        f = self.path("taken")
+        with open(f, "w") as fh:
+            fh.write("the user's file\n")
+        self.one_line(self.script("paper_study.py", "--levels", "0-1", "--out", f), "refused: --out .*not a folder")
+        with open(f) as fh:
+            self.assertEqual(fh.read(), "the user's file\n")
+
+    def test_bad_levels(self):
+        self.one_line(self.script("paper_study.py", "--levels", "0-x", "--out", self.path("o")), "refused: --levels")
+
+    @unittest.skipUnless(EXE, "set CONTACT2D=path/to/contact2d to run")
+    def test_single_level(self):
+        # the old code did the runs, then died in lsq_slope (TypeError)
+        out = self.path("one")
+        p = self.script("paper_study.py", "--exe", EXE, "--levels", "1", "--out", out)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        self.assertIn("one level (1): no errors, rates", p.stdout)
+        for name in ("convergence.csv", "fig1_vertical_displacement.png", "fig3_contact_stress.png", "p1_sign.csv"):
+            self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
+        self.assertFalse(os.path.exists(os.path.join(out, "rates.csv")))
+
+
 if __name__ == "__main__":
     unittest.main()
