@@ -130,3 +130,12 @@ class Run:
     def material(self):
         m = self.deck["material"]
         return float(m["young"]), float(m["poisson"]), float(m["density"])
+
+
+if __name__ == "__main__":
+    import sys
+
+    print("c2dh5.py is a module, not a script: it is used by "
+          "postproc/compare.py, paper_study.py, getfem_reference.py, the other study scripts "
+          "and tests/regression/c2dtest.py", file=sys.stderr)
+    sys.exit(2)

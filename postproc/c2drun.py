@@ -176,3 +176,10 @@ def out_dir(path, prog):
 def strip_group(deck_text, group):
     """Deck text without the namelist group &group ... / (e.g. to drop &contact)."""
     return re.sub(r"(?ims)^\s*&" + group + r"\b.*?^[^!\n]*?/\s*$", "", deck_text)
+
+
+if __name__ == "__main__":
+    print("c2drun.py is a module, not a script: it is used by "
+          "postproc/paper_study.py, hertz_study.py, speed_accuracy.py, impact_study.py, bench_speed.py "
+          "and the other study scripts", file=sys.stderr)
+    sys.exit(2)

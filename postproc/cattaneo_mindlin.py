@@ -49,3 +49,11 @@ def shear(x, a, c, mu, p0):
 def dundurs_beta_rigid(nu):
     """Dundurs beta of an elastic body on a rigid one (plane strain)."""
     return (1 - 2 * nu) / (2 * (1 - nu))
+
+
+if __name__ == "__main__":
+    import sys
+
+    print("cattaneo_mindlin.py is a module, not a script: it is used by "
+          "postproc/mindlin.py and tests/postproc/test_cattaneo_mindlin.py", file=sys.stderr)
+    sys.exit(2)

@@ -265,3 +265,11 @@ def pieces_difference_norms(pa, pb, rtol=1e-10):
         da, db = da - ea, db - eb
     l2sq = np.sum((b - a) / 3.0 * (da * da + da * db + db * db))
     return float(np.sqrt(max(l2sq, 0.0))), float(max(np.max(np.abs(da)), np.max(np.abs(db))))
+
+
+if __name__ == "__main__":
+    import sys
+
+    print("fem_q1.py is a module, not a script: it is used by "
+          "postproc/compare.py, lame.py and tests/regression/test_static.py", file=sys.stderr)
+    sys.exit(2)

@@ -85,3 +85,11 @@ def measure(path):
     return dict(P=P, R=R, a=a, p0=p0, p0_fe=float(p[0]), a_fe=a_fe, h_edge=h_edge,
                 h_min=float(seg.min()), l2=np.sqrt(err2), l2_rel=np.sqrt(err2 / ref2),
                 converged=conv, multiplier=mult, xs=xs, p=p, nel=nel)
+
+
+if __name__ == "__main__":
+    import sys
+
+    print("hertz.py is a module, not a script: it is used by "
+          "postproc/hertz_study.py, lame.py and tests/regression/test_hertz.py", file=sys.stderr)
+    sys.exit(2)

@@ -92,3 +92,11 @@ def measure(run, exact_answer=None):
     out["force_time"] = t_force
     out["force"] = force
     return out
+
+
+if __name__ == "__main__":
+    import sys
+
+    print("impact_measure.py is a module, not a script: it is used by "
+          "postproc/impact_study.py and tests/regression/test_impact.py", file=sys.stderr)
+    sys.exit(2)

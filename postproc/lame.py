@@ -63,3 +63,9 @@ def measure(path):
     h = float(np.max(np.linalg.norm(xe - np.roll(xe, -1, axis=1), axis=-1)))
     return dict(pc=pc, p=p, p_err_max=float(np.max(np.abs(p / pc - 1))), all_in_contact=bool(np.all(status > 0)),
                 energy_rel=np.sqrt(err / ref), h=h, converged=conv, nel=len(conn), ra=ra, rb=rb)
+
+
+if __name__ == "__main__":
+    print("lame.py is a module, not a script: it is used by "
+          "postproc/hertz_study.py and tests/regression/test_lame.py", file=sys.stderr)
+    sys.exit(2)

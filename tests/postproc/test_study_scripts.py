@@ -194,5 +194,17 @@ class PaperStudy(Base):
         self.assertFalse(os.path.exists(os.path.join(out, "rates.csv")))
 
 
+
+class Modules(Base):
+    def test_modules_say_so(self):
+        # the old modules printed nothing and exited 0 for --help (or any argument)
+        for name in ("c2dh5", "c2drun", "cattaneo_mindlin", "fem_q1", "hertz", "impact_measure", "lame", "outfile"):
+            for args in (["--help"], []):
+                with self.subTest(module=name, args=args):
+                    p = self.script(name + ".py", *args)
+                    self.one_line(p, r"^%s\.py is a module.*(postproc|tests)/\w+\.py" % name)
+                    self.assertEqual(p.stdout, "")
+
+
 if __name__ == "__main__":
     unittest.main()
