@@ -13,8 +13,9 @@ import math
 import os
 import subprocess
 import sys
-import tempfile
 import unittest
+
+from tmpcase import TempDirCase  # noqa: E402 (tests/postproc)
 
 import h5py
 import numpy as np
@@ -80,16 +81,8 @@ def energy_density(G):
     return LAM * np.trace(eps) ** 2 + 2 * MU * np.sum(eps * eps)
 
 
-class Base(unittest.TestCase):
-    def setUp(self):
-        self._tmp = tempfile.TemporaryDirectory()
-        self.dir = self._tmp.name
-
-    def tearDown(self):
-        self._tmp.cleanup()
-
-    def path(self, name):
-        return os.path.join(self.dir, name)
+class Base(TempDirCase):
+    pass
 
 
 class SelfAndProlongation(Base):

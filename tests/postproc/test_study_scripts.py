@@ -14,8 +14,9 @@ import os
 import shutil
 import subprocess
 import sys
-import tempfile
 import unittest
+
+from tmpcase import TempDirCase  # noqa: E402 (tests/postproc)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
@@ -32,17 +33,7 @@ def digest(path):
         return hashlib.sha256(fh.read()).hexdigest()
 
 
-class Base(unittest.TestCase):
-    def setUp(self):
-        self._tmp = tempfile.TemporaryDirectory()
-        self.dir = self._tmp.name
-
-    def tearDown(self):
-        self._tmp.cleanup()
-
-    def path(self, *names):
-        return os.path.join(self.dir, *names)
-
+class Base(TempDirCase):
     def script(self, name, *args, root=ROOT):
         return subprocess.run([sys.executable, "-B", os.path.join(root, "postproc", name)] + list(args),
                               capture_output=True, text=True, timeout=900)
