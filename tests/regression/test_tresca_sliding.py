@@ -139,8 +139,8 @@ def body(t):
                       reason="issue 3: within 1 % (nodes that stick for part of the stage dissipate nothing)")
 
         # -- energy balance --------------------------------------------------------------------------
-        t.check_le(run, "energy_balance_error at every sample", hist["energy_balance_error"], 1e-3,
-                   reason="acceptance bound of issue 3")
+        t.check_le(run, "energy_balance_error at every sample", hist["energy_balance_error"], 1e-12,
+                   reason="the staggered balance closes to round-off (measured <= 5e-15; issue 3 asked 1e-3)")
 
 
 if __name__ == "__main__":
