@@ -264,7 +264,12 @@ contains
       character(len=1024) :: line
       integer :: unit, ios, k, colon
       character(len=*), parameter :: key = 'Format="HDF">'
+      integer(c_long_long) :: dev, ino, size
+      integer :: kind, e
       name = ''
+      ! a regular file of sidecar size only (never open a FIFO or a device)
+      call sys_path_info(path, kind, dev, ino, size, e)
+      if (e /= 0 .or. kind /= kind_file .or. size > 1048576) return
       open (newunit=unit, file=path, status='old', action='read', iostat=ios)
       if (ios /= 0) return
       do

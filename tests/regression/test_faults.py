@@ -306,6 +306,13 @@ def body(t):
     rc, err, _ = finish(start(t, folder, quick[0], ["--force", "--set", "output:xdmf=.false."], out="same.h5"))
     t.check_equal(name, "--force with xdmf off: exit code", 0, rc)
     t.check_equal(name, "the replaced result's sidecar removed", False, os.path.exists(os.path.join(folder, "same.xmf")))
+    # a FIFO where the old sidecar would be is never opened (a read would block forever) nor removed
+    os.mkfifo(os.path.join(folder, "same.xmf"))
+    rc, err, _ = finish(start(t, folder, quick[0], ["--force", "--set", "output:xdmf=.false."], out="same.h5"),
+                        timeout=60)
+    t.check_equal(name, "--force with xdmf off beside a FIFO named like the sidecar: exit code", 0, rc)
+    t.check_equal(name, "the FIFO left alone", True, os.path.exists(os.path.join(folder, "same.xmf")))
+    os.remove(os.path.join(folder, "same.xmf"))
 
     # ---- a write that fails: file size limit (EFBIG) ----------------------------------------
     name = "write_fails"
