@@ -51,16 +51,11 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, run  # noqa: E402
+from c2drun import ROOT, find_exe, parse_levels, run  # noqa: E402
 
 DECK = ROOT / "inputs" / "baillet_sassi_2002_p1.nml"
 HERTZ_DECKS = ("hertz_cylinder_p1.nml", "hertz_indenter_p1.nml")
 PYTHON = "/usr/bin/python3"
-
-
-def parse_levels(text):
-    a, _, b = text.partition("-")
-    return list(range(int(a), int(b or a) + 1))
 
 
 def throughput(exe, out, level, repeats):

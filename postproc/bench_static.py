@@ -28,14 +28,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, run  # noqa: E402
+from c2drun import ROOT, find_exe, parse_levels, run  # noqa: E402
 
 TARGETS = {5: 0.43, 6: 1.9}     # issue 14: CHOLMOD with the contact condensed [s]; target within 2x
-
-
-def parse_levels(text):
-    a, _, b = text.partition("-")
-    return list(range(int(a), int(b or a) + 1))
 
 
 def static_times(exe, deck, out, level):
