@@ -1180,6 +1180,9 @@ contains
                            "the built-in rectangle takes edge = 'bottom' | 'right' | 'top' | 'left'"
                   return
                end if
+            else if (len_trim(c%edge) == 0) then
+               errmsg = no_place('contact')
+               return
             else
                if (edge_id(c%edge) == 0) then
                   errmsg = "contact:edge = '"//trim(c%edge)//"' is not one of "//join(edges, ', ')// &
@@ -1390,6 +1393,19 @@ contains
          bad = .false.
       end function edge_not_finite
 
+      !> The message for a group that names neither an edge nor a boundary (both empty, e.g.
+      !> after --set "contact:boundary=''"): what to give, for the mesh the deck has.
+      function no_place(g) result(msg)
+         character(len=*), intent(in) :: g
+         character(len=:), allocatable :: msg
+         if (len_trim(deck%mesh%file) > 0) then
+            msg = g//": boundary is empty: give boundary = '<physical curve>' of the Gmsh mesh "// &
+                  trim(deck%mesh%file)
+         else
+            msg = g//": edge is empty: give edge = "//join(edges, ' | ')//" (the built-in rectangle's sides)"
+         end if
+      end function no_place
+
       subroutine validate_edge_load(cfg, group, k)
          type(edge_load_cfg_t), intent(inout) :: cfg
          character(len=*), intent(in) :: group
@@ -1408,6 +1424,9 @@ contains
                         "built-in rectangle takes edge = 'bottom' | 'right' | 'top' | 'left'"
                return
             end if
+         else if (len_trim(cfg%edge) == 0) then
+            errmsg = no_place(g)
+            return
          else
             if (edge_id(cfg%edge) == 0) then
                errmsg = g//": edge = '"//trim(cfg%edge)//"' is not one of "//join(edges, ', ')// &

@@ -73,6 +73,13 @@ CASES = [
     # and a --set the message is not about is not named
     ("set_not_blamed", "bad_decks/young_zero.nml", ["--set", "solver:tol_residual=1e-7"],
      r"material:young = .*must be > 0$"),
+    # a side or curve emptied by --set: the message says what to give, and names the --set
+    ("set_boundary_empty", "inputs/hertz_cylinder_p1.nml", ["--set", "contact:boundary=''"],
+     r"contact: boundary is empty: give boundary = '<physical curve>' of the Gmsh mesh hertz_cylinder\.geo "
+     r"\(from --set 'contact:boundary='''\)$"),
+    ("set_edge_empty", "inputs/" + UNIAXIAL, ["--set", "dirichlet#1:edge=''"],
+     r"&dirichlet \(#1\): edge is empty: give edge = 'bottom' \| 'right' \| 'top' \| 'left'.*"
+     r"\(from --set 'dirichlet#1:edge='''\)$"),
     ("set_contact_without_group", "inputs/" + UNIAXIAL, ["--set", "contact:multiplier='P0'"],
      r"&contact"),
     ("group_not_closed", "bad_decks/group_not_closed.nml", [],
