@@ -71,7 +71,7 @@ def getfem(h5, ref, reuse):
         with h5py.File(ref, "r") as f:
             if int(f.attrs.get("converged", 0)) == 1:
                 return 0
-    proc = subprocess.run([sys.executable, str(HERE / "getfem_coulomb.py"), str(h5), "-o", str(ref)],
+    proc = subprocess.run([sys.executable, str(HERE / "getfem_coulomb.py"), str(h5), "-o", str(ref), "--force"],
                           capture_output=True, text=True)
     return proc.returncode
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """GetFEM quasi-static Coulomb reference for a contact2d run (P1 multipliers), issue 11.
 
-    postproc/getfem_coulomb.py IN.h5 -o REF.h5 [--increments 20] [--tol 1e-12] [--side NAME=SIDE ...]
+    postproc/getfem_coulomb.py IN.h5 -o REF.h5 [--force] [--increments 20] [--tol 1e-12] [--side NAME=SIDE ...]
                                [--from-snapshot TIME]
 
 IN.h5 is a contact2d output file of a deck with `contact:friction = 'coulomb'` and P1 multipliers.
@@ -31,7 +31,10 @@ force on the body -F_n n - F_t t = B_N^T lambda_n + B_T^T lambda_t). Newton stop
 incremental KKT conditions above hold to --tol (relative), checked here, not by GetFEM's residual.
 
 Writes REF.h5 in contact2d's layout (as getfem_reference.py) with root attributes
-program = 'getfem_coulomb', increments, steps (solves), newton_iterations (total).
+program = 'getfem_coulomb', increments, steps (solves), newton_iterations (total). As
+getfem_reference.py (postproc/outfile.py): REF.h5 is never IN.h5, an existing REF.h5 is replaced
+only with --force, a missing folder is refused before solving (one line, exit 2), and the file is
+written beside REF.h5 and moved into place when complete.
 P0 is not represented: GetFEM's brick pairs each tangential row with the normal row of the same
 index (|lambda_t,i| <= mu |lambda_n,i|), so with B_N = D N it would bound dual-cell tangential
 multipliers by mu_n,i, not the nodal forces F_t,i by mu (D^T mu_n)_i as contact2d does.
@@ -46,6 +49,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import getfem_reference as gr  # noqa: E402
+from outfile import OutputRefused, check_target, replacing  # noqa: E402
 
 PROGRAM = "getfem_coulomb"
 SLIP_TOL = gr.SLIP_TOL
@@ -255,7 +259,9 @@ def check_prescribed(path, prob):
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("input")
-    p.add_argument("-o", "--output", required=True)
+    p.add_argument("-o", "--output", required=True,
+                   help="reference file to write (.h5; never the input, an existing file only with --force)")
+    p.add_argument("--force", action="store_true", help="replace an existing output file")
     p.add_argument("--increments", type=int, default=20, help="steps per load-curve interval (default 20)")
     p.add_argument("--tol", type=float, default=1e-12)
     p.add_argument("--max-iter", type=int, default=60)
@@ -268,6 +274,11 @@ def main(argv=None):
                    help="a Gmsh mesh's &dirichlet / &traction boundary NAME is the bounding-box side SIDE "
                         "(bottom, right, top, left); checked against the run's reactions")
     args = p.parse_args(argv)
+    try:
+        check_target(args.output, inputs=(args.input,), force=args.force)
+    except OutputRefused as e:
+        print("getfem_coulomb: refused: %s" % e, file=sys.stderr)
+        return 2
     try:
         sides = {}
         for item in args.side:
@@ -334,14 +345,19 @@ def main(argv=None):
         pass
     a = A()
     a.tol, a.lsolver = args.tol, "mumps"
-    gr.write_output(args.output, prob, info_ref, out, a)
-    with h5py.File(args.output, "r+") as f:
-        f.attrs["program"] = PROGRAM
-        f.attrs["friction"] = "coulomb"
-        f.attrs["friction_coefficient"] = mu_f
-        f.attrs["increments"] = np.int32(args.increments)
-        f.attrs["steps"] = np.int32(info["steps"])
-        f["contact"].attrs["friction"] = "coulomb"
+    try:
+        with replacing(args.output, force=args.force) as tmp:
+            gr.write_output(tmp, prob, info_ref, out, a)
+            with h5py.File(tmp, "r+") as f:
+                f.attrs["program"] = PROGRAM
+                f.attrs["friction"] = "coulomb"
+                f.attrs["friction_coefficient"] = mu_f
+                f.attrs["increments"] = np.int32(args.increments)
+                f.attrs["steps"] = np.int32(info["steps"])
+                f["contact"].attrs["friction"] = "coulomb"
+    except (OutputRefused, OSError) as e:
+        print("getfem_coulomb: %s not written: %s" % (args.output, e), file=sys.stderr)
+        return 2
     print("getfem_coulomb: %s -> %s" % (args.input, args.output))
     print("  problem        %d Q1 elements, %d GetFEM dofs; P1 Coulomb mu = %g, basic brick B_N = N, B_T = T"
           % (prob["conn"].shape[0], info["ndof"], mu_f))

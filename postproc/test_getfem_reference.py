@@ -5,7 +5,8 @@
 
 The inputs are synthetic contact2d-layout files (mesh, effective deck, contact boundary) written
 here, so the test needs neither the contact2d binary nor a previous run. It checks the reference
-against closed-form answers (SPEC section 7) and against itself (P1 nodal brick = basic brick).
+against closed-form answers (SPEC section 7) and against itself (P1 nodal brick = basic brick),
+and the -o rules (postproc/outfile.py) of getfem_reference.py and getfem_coulomb.py.
 """
 import os
 import subprocess
@@ -63,8 +64,8 @@ def write_input(path, lx, ly, nx, ny, groups, contact=None):
             f.create_dataset("contact/gap", data=np.zeros(nx + 1))
 
 
-def run(inp, out, *extra):
-    return subprocess.run([sys.executable, SCRIPT, inp, "-o", out, *extra], capture_output=True, text=True)
+def run(inp, out, *extra, script=SCRIPT):
+    return subprocess.run([sys.executable, script, inp, "-o", out, *extra], capture_output=True, text=True)
 
 
 def read(path):
@@ -187,15 +188,22 @@ class GetfemReference(unittest.TestCase):
 
 class OutputRefusals(unittest.TestCase):
     """-o is checked before anything is read or solved (so these need no GetFEM)."""
+    script = SCRIPT
 
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory()
         self.dir = self.tmp.name
         self.inp = os.path.join(self.dir, "run.h5")
-        write_input(self.inp, 1.0, 0.5, 4, 2, PATCH, contact("P1"))
+        self.write_input(self.inp)
 
     def tearDown(self):
         self.tmp.cleanup()
+
+    def write_input(self, path):
+        write_input(path, 1.0, 0.5, 4, 2, PATCH, contact("P1"))
+
+    def run_script(self, inp, out, *extra):
+        return run(inp, out, *extra, script=self.script)
 
     def refused(self, proc, pattern):
         self.assertEqual(proc.returncode, 2, proc.stderr)
@@ -205,8 +213,8 @@ class OutputRefusals(unittest.TestCase):
     def test_never_the_input(self):
         # the old code solved and then wrote the reference over the user's contact2d run
         for extra in ((), ("--force",)):
-            self.refused(run(self.inp, self.inp, *extra), "is an input")
-            self.refused(run(self.inp, os.path.join(self.dir, ".", "run.h5"), *extra), "is an input")
+            self.refused(self.run_script(self.inp, self.inp, *extra), "is an input")
+            self.refused(self.run_script(self.inp, os.path.join(self.dir, ".", "run.h5"), *extra), "is an input")
         with h5py.File(self.inp, "r") as f:
             self.assertEqual(f.attrs["program"], "synthetic")
 
@@ -214,12 +222,36 @@ class OutputRefusals(unittest.TestCase):
         out = os.path.join(self.dir, "ref.h5")
         with open(out, "w") as fh:
             fh.write("the user's file\n")
-        self.refused(run(self.inp, out), "exists .*--force")
+        self.refused(self.run_script(self.inp, out), "exists .*--force")
         with open(out) as fh:
             self.assertEqual(fh.read(), "the user's file\n")
 
     def test_missing_folder(self):
-        self.refused(run(self.inp, os.path.join(self.dir, "no_such_dir", "ref.h5")), "does not exist")
+        self.refused(self.run_script(self.inp, os.path.join(self.dir, "no_such_dir", "ref.h5")), "does not exist")
+
+
+class CoulombOutputRefusals(OutputRefusals):
+    """The same -o rules for getfem_coulomb.py (the old code wrote over the input or an existing file,
+    in place: h5py mode 'w', then 'r+'), on an input it solves (a Coulomb patch)."""
+    script = os.path.join(HERE, "getfem_coulomb.py")
+
+    def write_input(self, path):
+        write_input(path, 1.0, 0.5, 4, 2, PATCH, dict(contact("P1", "coulomb"), friction_coefficient=0.3))
+        with h5py.File(path, "r+") as f:
+            f.attrs["program"] = "synthetic"
+            f.create_dataset("final/reaction", data=np.zeros((15, 2)))
+            f.create_dataset("contact/normal", data=np.tile([0.0, -1.0], (5, 1)))
+
+    def test_force_replaces(self):
+        out = os.path.join(self.dir, "ref.h5")
+        with open(out, "w") as fh:
+            fh.write("the user's file\n")
+        p = self.run_script(self.inp, out, "--force", "--increments", "2")
+        self.assertEqual(p.returncode, 0, p.stdout + p.stderr)
+        with h5py.File(out, "r") as f:
+            self.assertEqual(f.attrs["program"], "getfem_coulomb")
+            self.assertEqual(int(f.attrs["increments"]), 2)
+        self.assertEqual(sorted(os.listdir(self.dir)), ["ref.h5", "run.h5"])   # no temporary file left
 
 
 if __name__ == "__main__":
