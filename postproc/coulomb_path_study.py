@@ -2,7 +2,7 @@
 """Coulomb friction: end state against ramp duration and loading path, and large mu (issue 11).
 
     /usr/bin/python3 postproc/coulomb_path_study.py [--exe build/bin/contact2d] [--out study/coulomb]
-                     [--level 1] [--factors 1,2,4,8,16,32] [--reuse]
+                     [--level 1] [--factors 1,2,4,8,16,32] [--reuse] [--force]
 
 Scene: inputs/coulomb_sliding_p1.nml (and _p0), mesh level 1 by default, tol_residual 1e-11. The
 top is pressed by 1e-3 mm and moved by a stroke s_x: 5e-3 mm (the deck: the block ends fully
@@ -18,6 +18,8 @@ Large mu: mu = 1 and 2 on the same scene (deck ramp and 8x slower): whether the 
 status changes summed over the run (chatter), and the end state against GetFEM.
 
 Prints every figure; writes coulomb_path.csv, coulomb_large_mu.csv and coulomb_path.png in --out.
+Those already there are refused before any run (one line, exit 2) unless --force; each is written
+beside its name and moved into place (postproc/outfile.py).
 """
 import argparse
 import csv
@@ -31,6 +33,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2drun import ROOT, find_exe  # noqa: E402
 from compare import compare  # noqa: E402
+from outfile import refuse_existing, replacing, save_figure  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 STROKES = {"sliding": 5.0e-3, "partial": 4.0e-4}
@@ -92,11 +95,15 @@ def main():
     ap.add_argument("--out", default="study/coulomb")
     ap.add_argument("--level", type=int, default=1)
     ap.add_argument("--factors", default="1,2,4,8,16,32")
-    ap.add_argument("--reuse", action="store_true")
+    ap.add_argument("--reuse", action="store_true", help="keep the runs and GetFEM references already in --out")
+    ap.add_argument("--force", action="store_true",
+                    help="replace the CSVs and PNG already in --out (refused otherwise, before any run)")
     args = ap.parse_args()
     exe = find_exe(args.exe)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    refuse_existing("coulomb_path_study.py", [out / "coulomb_path.csv", out / "coulomb_large_mu.csv",
+                                              out / "coulomb_path.png"], args.force)
     factors = [float(x) for x in args.factors.split(",")]
 
     rows = []
@@ -142,7 +149,7 @@ def main():
         path_effect[stroke_name] = e
         print(f"path effect ({stroke_name}): GetFEM staged vs simultaneous energy-norm diff {e:.3e}; statuses "
               f"{sa.tolist()} vs {sb.tolist()}; total F_t {fta:.6f} vs {ftb:.6f} N")
-    with open(out / "coulomb_path.csv", "w", newline="") as fh:
+    with replacing(out / "coulomb_path.csv", args.force) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=[k for k in rows[0] if k != "file"], extrasaction="ignore")
         w.writeheader()
         w.writerows(rows)
@@ -172,7 +179,7 @@ def main():
                           f"changes {chg}, stick/slip/separated {row['n_stick']}/{row['n_slip']}/{row['n_separated']}, "
                           f"F_t/F_n {ft / fn:.6f}, vs GetFEM {row['energy_vs_getfem']:.2e} "
                           f"(statuses equal: {row['status_equal_getfem']})")
-    with open(out / "coulomb_large_mu.csv", "w", newline="") as fh:
+    with replacing(out / "coulomb_large_mu.csv", args.force) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(big[0]))
         w.writeheader()
         w.writerows(big)
@@ -202,7 +209,7 @@ def plot(rows, path_effect, png, args):
     axes[0].set_ylabel("relative energy-norm difference of the end state")
     axes[1].legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(png, dpi=120)
+    save_figure(fig, png, args.force, dpi=120)
     print(f"wrote {png}")
 
 

@@ -2,7 +2,7 @@
 """Impact on the rigid plane against the exact 1D wave solution (issue 12, docs/impact.md).
 
     /usr/bin/python3 postproc/impact_study.py [--out study/impact] [--levels 2 3 4 5]
-                                              [--figures docs/figures] [--rerun] [--exe PATH]
+                                              [--figures docs/figures] [--rerun] [--exe PATH] [--force]
 
 Runs inputs/impact_bar_p1.nml, _p0.nml and _penalty.nml (k_p = 1e6 and 1e7 MPa/mm) at
 dt/dt_critical = 0.5, 0.9, 1.0 (solver:dt_factor; dt = dt_critical is accepted, only a dt above
@@ -15,7 +15,9 @@ energy returned to the rebounding body (kinetic + strain at the end, and the rig
 estimate h/(2L) (the bottom row of nodes, mass rho lx h/2, stopped dead once), the largest
 penetration and the energy balance error. Figures: <figures>/impact_force.png (force histories
 against the exact plateau) and <figures>/impact_energy.png (energy lost and rebound error against
-h). Runs are reused when their .h5 exists (--rerun redoes them).
+h). Runs are reused when their .h5 exists (--rerun redoes them). The table and figures already
+there (the tracked docs/figures ones by default) are refused before any run (one line, exit 2)
+unless --force; each is written beside its name and moved into place (postproc/outfile.py).
 """
 import argparse
 import csv
@@ -29,6 +31,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
 from c2drun import ROOT, find_exe, run  # noqa: E402
 from impact_measure import exact, measure  # noqa: E402
+from outfile import refuse_existing, replacing, save_figure  # noqa: E402
 
 METHODS = [  # label, deck, extra settings
     ("P1", "impact_bar_p1.nml", {}),
@@ -132,7 +135,7 @@ def figures(rows, args):
     axes[0][0].legend(fontsize=8, loc="lower center")
     fig.tight_layout()
     path = args.figures / "impact_force.png"
-    fig.savefig(path, dpi=100)
+    save_figure(fig, path, args.force, dpi=100)
     print("wrote %s" % path)
 
     fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(14, 4))
@@ -164,7 +167,7 @@ def figures(rows, args):
     ax2.legend(fontsize=6, ncol=2)
     fig.tight_layout()
     path = args.figures / "impact_energy.png"
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, args.force, dpi=110)
     print("wrote %s" % path)
 
 
@@ -175,10 +178,15 @@ def main():
     ap.add_argument("--levels", type=int, nargs="+", default=[2, 3, 4, 5])
     ap.add_argument("--exe", default=None)
     ap.add_argument("--rerun", action="store_true")
+    ap.add_argument("--force", action="store_true",
+                    help="replace impact_study.csv in --out and the figures in --figures (refused otherwise, "
+                         "before any run)")
     args = ap.parse_args()
     args.exe = find_exe(args.exe)
     args.out.mkdir(parents=True, exist_ok=True)
     args.figures.mkdir(parents=True, exist_ok=True)
+    refuse_existing("impact_study.py", [args.out / "impact_study.csv", args.figures / "impact_force.png",
+                                        args.figures / "impact_energy.png"], args.force)
     rows = []
     for label, deck, sets in METHODS:
         for level in args.levels:
@@ -199,7 +207,7 @@ def main():
                     ", ".join("%.2f" % (r["normal_work"] / r["estimate_h_2L"]) for r in sel)))
     path = args.out / "impact_study.csv"
     keys = [k for k in rows[0] if not k.startswith("_")]
-    with open(path, "w", newline="") as fh:
+    with replacing(path, args.force) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=keys, extrasaction="ignore")
         w.writeheader()
         w.writerows(rows)

@@ -9,6 +9,12 @@
 check_target refuses (OutputRefused, a one-line message): one of the command's inputs (always,
 --force or not), an existing file unless force, a directory, a folder that does not exist or is
 not writable. Only the standard library.
+
+The study scripts (paper_study.py, hertz_study.py, ...) check their products (tables, figures,
+reports) before any run and write each one through replacing:
+
+    refuse_existing("paper_study.py", [out / "convergence.csv", ...], force=args.force)  # or exit 2
+    save_figure(fig, out / "convergence.png", force=args.force, dpi=130)
 """
 import contextlib
 import os
@@ -76,7 +82,23 @@ def replacing(path, force=False):
             os.unlink(tmp)
 
 
+def refuse_existing(prog, paths, force=False):
+    """check_target on each of a study's products; the first refused: one line on stderr, exit 2."""
+    for path in paths:
+        try:
+            check_target(path, force=force)
+        except OutputRefused as e:
+            print("%s: refused: %s" % (prog, e), file=sys.stderr)
+            sys.exit(2)
+
+
+def save_figure(fig, path, force=False, **kwargs):
+    """fig.savefig(path, **kwargs) through replacing (the format is path's extension)."""
+    with replacing(path, force=force) as tmp:
+        fig.savefig(tmp, format=os.path.splitext(str(path))[1][1:] or None, **kwargs)
+
+
 if __name__ == "__main__":
-    print("outfile.py is a module (used by postproc/compare.py and postproc/getfem_reference.py), "
-          "not a script", file=sys.stderr)
+    print("outfile.py is a module (used by postproc/compare.py, postproc/getfem_reference.py and the "
+          "study scripts), not a script", file=sys.stderr)
     sys.exit(2)

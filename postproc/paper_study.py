@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The paper's numerical section (Baillet & Sassi 2002, section 3; SPEC sections 7, 9): one command.
 
-    /usr/bin/python3 postproc/paper_study.py [--levels 0-6] [--out study/paper] [--threads 2]
+    /usr/bin/python3 postproc/paper_study.py [--levels 0-6] [--out study/paper] [--threads 2] [--force]
 
 1. Runs inputs/baillet_sassi_2002_p1.nml and _p0.nml at mesh levels k (13 2^k x 3 2^k elements,
    h = 0.1/2^k mm), tightened to tol_residual = 1e-10 so that relaxation error stays far below
@@ -16,6 +16,8 @@
    fig3_contact_stress.png (Fig. 3: normal and tangential contact stress along the abscissa for
    several h, P1 against P0, stick / slip / separated zones marked).
 4. p1_sign.csv: where and how much the recovered P1 pressure is tensile, against P0.
+The tables and figures already in --out are refused before any run (one line, exit 2) unless
+--force; each is written beside its name and moved into place (postproc/outfile.py).
 """
 import argparse
 import csv
@@ -28,6 +30,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
 from c2drun import ROOT, find_exe, levels_or_exit, out_dir, reuse_problem, run  # noqa: E402
+from outfile import refuse_existing, replacing, save_figure  # noqa: E402
 from compare import compare  # noqa: E402
 
 MULTIPLIERS = ("P1", "P0")
@@ -55,12 +58,17 @@ def main():
     ap.add_argument("--threads", type=int, default=None, help="OMP_NUM_THREADS for the runs")
     ap.add_argument("--tol", type=float, default=1e-10, help="solver:tol_residual of the runs")
     ap.add_argument("--rerun", action="store_true", help="redo runs even if their .h5 exists")
+    ap.add_argument("--force", action="store_true",
+                    help="replace the tables and figures already in --out (refused otherwise, before any run)")
     args = ap.parse_args()
 
     exe = find_exe(args.exe)
     levels = levels_or_exit(args.levels, "--levels", "paper_study.py")
     out = out_dir(args.out, "paper_study.py")
     ref_level = max(levels)
+    products = ["convergence.csv", "fig1_vertical_displacement.png", "fig3_contact_stress.png", "p1_sign.csv"]
+    refuse_existing("paper_study.py", [out / name for name in products + (["rates.csv", "convergence.png"]
+                                                                           if len(levels) > 1 else [])], args.force)
 
     # 1. runs
     files = {}
@@ -104,7 +112,7 @@ def main():
             rows.append(row)
     keys = ["multiplier", "level", "h", "elements", "steps", "wall_seconds", "energy", "h1", "pressure_l2",
             "diff_energy", "diff_h1", "diff_pressure_l2"]
-    with open(out / "convergence.csv", "w", newline="") as fh:
+    with replacing(out / "convergence.csv", args.force) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=keys)
         w.writeheader()
         for r in rows:
@@ -119,9 +127,9 @@ def main():
 
     if len(levels) < 2:
         print(f"\none level ({levels[0]}): no errors, rates or convergence.png (they need two levels or more)")
-        plot_fig1(files["P1", ref_level], out / "fig1_vertical_displacement.png")
-        plot_fig3(files, levels, out / "fig3_contact_stress.png")
-        p1_sign(files, levels, out / "p1_sign.csv")
+        plot_fig1(files["P1", ref_level], out / "fig1_vertical_displacement.png", args.force)
+        plot_fig3(files, levels, out / "fig3_contact_stress.png", args.force)
+        p1_sign(files, levels, out / "p1_sign.csv", args.force)
         return
 
     rates = []
@@ -138,7 +146,7 @@ def main():
                               rate=lsq_slope(diff)))
             rates.append(dict(multiplier=m, measure=measure, way="successive differences", levels="three finest",
                               rate=lsq_slope(diff[-3:])))
-    with open(out / "rates.csv", "w", newline="") as fh:
+    with replacing(out / "rates.csv", args.force) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rates[0]))
         w.writeheader()
         w.writerows(rates)
@@ -146,13 +154,13 @@ def main():
     for r in rates:
         print(f"  {r['multiplier']} {r['measure']:12s} {r['way']:23s} {r['levels']:12s} {r['rate']:6.3f}")
 
-    plot_convergence(rows, rates, out / "convergence.png", ref_level)
-    plot_fig1(files["P1", ref_level], out / "fig1_vertical_displacement.png")
-    plot_fig3(files, levels, out / "fig3_contact_stress.png")
-    p1_sign(files, levels, out / "p1_sign.csv")
+    plot_convergence(rows, rates, out / "convergence.png", ref_level, args.force)
+    plot_fig1(files["P1", ref_level], out / "fig1_vertical_displacement.png", args.force)
+    plot_fig3(files, levels, out / "fig3_contact_stress.png", args.force)
+    p1_sign(files, levels, out / "p1_sign.csv", args.force)
 
 
-def plot_convergence(rows, rates, path, ref_level):
+def plot_convergence(rows, rates, path, ref_level, force):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -184,11 +192,11 @@ def plot_convergence(rows, rates, path, ref_level):
         ax.grid(True, which="both", alpha=0.3)
     fig.suptitle("Convergence of the P1 and P0 multiplier methods (cf. Baillet & Sassi 2002, Fig. 2)")
     fig.tight_layout()
-    fig.savefig(path, dpi=130)
+    save_figure(fig, path, force, dpi=130)
     print(f"wrote {path}")
 
 
-def plot_fig1(h5, path):
+def plot_fig1(h5, path, force):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -209,7 +217,7 @@ def plot_fig1(h5, path):
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     fig.tight_layout()
-    fig.savefig(path, dpi=130)
+    save_figure(fig, path, force, dpi=130)
     print(f"wrote {path}")
 
 
@@ -225,7 +233,7 @@ def contact_curves(h5):
     return s, p, q, s, st
 
 
-def plot_fig3(files, levels, path):
+def plot_fig3(files, levels, path, force):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -266,11 +274,11 @@ def plot_fig3(files, levels, path):
     fig.suptitle("Contact stresses for several h, P1 against P0; ticks on the axis: stick / slip / separated "
                  f"(level {shown[-1]}) (cf. Fig. 3)")
     fig.tight_layout()
-    fig.savefig(path, dpi=130)
+    save_figure(fig, path, force, dpi=130)
     print(f"wrote {path}")
 
 
-def p1_sign(files, levels, path):
+def p1_sign(files, levels, path, force):
     """Where and how much the recovered P1 pressure is tensile, against P0 (which cannot be)."""
     rows = []
     for k in levels:
@@ -283,7 +291,7 @@ def p1_sign(files, levels, path):
                              min_pressure=p.min(), min_at=s[np.argmin(p)], tensile_nodes=int(neg.sum()),
                              tensile_in_contact=int((neg & (st > 0)).sum()),
                              min_over_max=p.min() / p.max()))
-    with open(path, "w", newline="") as fh:
+    with replacing(path, force) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)

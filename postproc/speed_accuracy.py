@@ -2,7 +2,7 @@
 """Speed against accuracy on the paper scene (issue 5): error of the end state against wall time.
 
     /usr/bin/python3 postproc/speed_accuracy.py [--levels 1-5] [--reference-dir study/paper]
-                                               [--out study/speed_accuracy] [--threads 1]
+                                               [--out study/speed_accuracy] [--threads 1] [--reuse] [--force]
 
 Sweeps mesh level x multiplier (P1, P0) x load ramp x convergence tolerance (tol_residual = tol,
 tol_kinetic = tol^2, since kinetic energy goes with the square of the out-of-balance), runs contact2d,
@@ -10,7 +10,9 @@ measures its wall time and the relative energy-norm error of its end state again
 reference (the level-6 runs of postproc/paper_study.py when --reference-dir has them, otherwise
 a level-(max+1) run made here), and solves the same problem on the same meshes with the GetFEM
 static reference (postproc/getfem_reference.py; its assembly + solve time, Python start-up
-excluded). Writes speed_accuracy.csv and speed_accuracy.png (log-log, GetFEM on the same axes).
+excluded). Writes speed_accuracy.csv and speed_accuracy.png (log-log, GetFEM on the same axes);
+those already in --out are refused before any run (one line, exit 2) unless --force, and each is
+written beside its name and moved into place (postproc/outfile.py).
 """
 import argparse
 import csv
@@ -24,6 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
 from c2drun import ROOT, find_exe, run  # noqa: E402
 from compare import compare  # noqa: E402
+from outfile import refuse_existing, replacing, save_figure  # noqa: E402
 
 RAMPS = (0.5e-6, 2.5e-6, 1.0e-5)
 TOLS = (1e-4, 1e-6, 1e-8)
@@ -39,10 +42,13 @@ def main():
     ap.add_argument("--no-getfem", action="store_true")
     ap.add_argument("--reuse", action="store_true",
                     help="keep runs that finished with the same deck and settings (their timings too)")
+    ap.add_argument("--force", action="store_true",
+                    help="replace speed_accuracy.csv and .png already in --out (refused otherwise, before any run)")
     args = ap.parse_args()
     exe = find_exe(args.exe)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    refuse_existing("speed_accuracy.py", [out / "speed_accuracy.csv", out / "speed_accuracy.png"], args.force)
     a, _, b = args.levels.partition("-")
     levels = list(range(int(a), int(b or a) + 1))
 
@@ -98,15 +104,15 @@ def main():
                                  wall_seconds=wall, energy_error=err["energy"], pressure_error=err["pressure_l2"]))
                 print(f"GetFEM {m.upper()} k={k}: {wall:8.3f} s  energy error {err['energy']:.3e}", flush=True)
 
-    with open(out / "speed_accuracy.csv", "w", newline="") as fh:
+    with replacing(out / "speed_accuracy.csv", args.force) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
     print(f"wrote {out / 'speed_accuracy.csv'}")
-    plot(rows, out / "speed_accuracy.png", levels)
+    plot(rows, out / "speed_accuracy.png", levels, args.force)
 
 
-def plot(rows, path, levels):
+def plot(rows, path, levels, force):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -133,7 +139,7 @@ def plot(rows, path, levels):
     fig.suptitle("Speed against accuracy, paper scene (Tresca): contact2d (tolerances 1e-4, 1e-6, 1e-8 "
                  "per marker group) and GetFEM's static solve (squares)")
     fig.tight_layout()
-    fig.savefig(path, dpi=130)
+    save_figure(fig, path, force, dpi=130)
     print(f"wrote {path}")
 
 

@@ -2,11 +2,13 @@
 """Where methods fail (issue 6): penalty against multipliers, inf-sup loss, friction path, friction
 only in contact, long undamped runs. The dt sweep is postproc/stability_sweep.py.
 
-    /usr/bin/python3 postproc/stability_study.py all [--out study/stability]
+    /usr/bin/python3 postproc/stability_study.py all [--out study/stability] [--force]
     /usr/bin/python3 postproc/stability_study.py penalty|infsup|ramp|scope|longrun [--out ...]
 
 Every part prints its figures and writes a CSV and a PNG into --out; docs/stability.md discusses
-them. Runs are reused when their .h5 exists (pass --rerun to redo them).
+them. Runs are reused when their .h5 exists (pass --rerun to redo them). The CSVs and PNGs of the
+parts asked for already in --out are refused before any run (one line, exit 2) unless --force;
+each is written beside its name and moved into place (postproc/outfile.py).
 """
 import argparse
 import csv
@@ -20,8 +22,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
 from c2drun import ROOT, find_exe, run  # noqa: E402
 from compare import compare  # noqa: E402
+from outfile import refuse_existing, replacing, save_figure  # noqa: E402
 
 E, NU, H, DELTA = 7.0e4, 0.3, 0.5, 1.0e-3
+PRODUCTS = {"penalty": ("penalty.csv", "penalty.png"), "infsup": ("infsup.csv", "infsup.png"),
+            "ramp": ("ramp.csv", "ramp.png"), "scope": ("scope.csv",), "longrun": ("longrun.csv",)}
 
 
 def plt_module():
@@ -31,8 +36,8 @@ def plt_module():
     return plt
 
 
-def write_csv(path, rows):
-    with open(path, "w", newline="") as fh:
+def write_csv(ctx, path, rows):
+    with replacing(path, ctx.force) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
@@ -84,7 +89,7 @@ def penalty(ctx):
             rows.append(dict(method=m.upper(), k_p=np.nan, penetration=pen, predicted=0.0, ratio=np.nan,
                              dt_critical=float(r.attrs["dt_critical"]), dt_power=float(r.attrs["dt_stable_estimate"]),
                              converged=int(r.attrs["converged"])))
-    write_csv(ctx.out / "penalty.csv", rows)
+    write_csv(ctx, ctx.out / "penalty.csv", rows)
     print(f"{'method':8s} {'k_p':>9s} {'penetration':>12s} {'p/k_p':>12s} {'ratio':>7s} {'dt_crit':>10s} {'dt_power':>10s}")
     for r in rows:
         print(f"{r['method']:8s} {r['k_p']:9.2e} {r['penetration']:12.4e} {r['predicted']:12.4e} {r['ratio']:7.4f} "
@@ -123,7 +128,7 @@ def penalty(ctx):
     a2.set_title("stable step")
     a2.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(ctx.out / "penalty.png", dpi=120)
+    save_figure(fig, ctx.out / "penalty.png", ctx.force, dpi=120)
     print(f"wrote {ctx.out / 'penalty.png'}")
 
 
@@ -153,7 +158,7 @@ def infsup(ctx):
                 rows.append(dict(multiplier=m.upper(), level=level, variant=variant, second_difference=osc,
                                  extrema_first_quarter=ext, p_first=float(p[0]), p_second=float(p[1])))
                 curves[m, level, variant] = (s, p, r.attrs["multiplier"])
-    write_csv(ctx.out / "infsup.csv", rows)
+    write_csv(ctx, ctx.out / "infsup.csv", rows)
     for r in rows:
         print(f"{r['multiplier']} k={r['level']} {r['variant']:9s}: max |second difference| / max p = "
               f"{r['second_difference']:.3f}, local extrema in the first quarter {r['extrema_first_quarter']}")
@@ -177,7 +182,7 @@ def infsup(ctx):
     axes[0].set_ylabel("contact pressure [MPa]")
     fig.suptitle("Gamma_u touching Gamma_c (red) against the hypothesis of the paper (blue)")
     fig.tight_layout()
-    fig.savefig(ctx.out / "infsup.png", dpi=120)
+    save_figure(fig, ctx.out / "infsup.png", ctx.force, dpi=120)
     print(f"wrote {ctx.out / 'infsup.png'}")
 
 
@@ -204,7 +209,7 @@ def ramp(ctx):
             rows.append(dict(multiplier=m.upper(), t_ramp=tr, energy=e["energy"], pressure_l2=e["pressure_l2"],
                              shear_l2=e["shear_l2"], status_differs=int(np.sum(st != st_ref)), steps=steps,
                              wall_seconds=wall))
-    write_csv(ctx.out / "ramp.csv", rows)
+    write_csv(ctx, ctx.out / "ramp.csv", rows)
     for r in rows:
         print(f"{r['multiplier']} t_ramp = {r['t_ramp']:.2e} s: energy-norm error {r['energy']:.2e}, pressure "
               f"{r['pressure_l2']:.2e}, shear {r['shear_l2']:.2e}, {r['status_differs']} statuses differ, "
@@ -222,7 +227,7 @@ def ramp(ctx):
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(ctx.out / "ramp.png", dpi=120)
+    save_figure(fig, ctx.out / "ramp.png", ctx.force, dpi=120)
     print(f"wrote {ctx.out / 'ramp.png'}")
 
 
@@ -245,7 +250,7 @@ def scope(ctx):
                                  steps=int(r.attrs["steps"]), final_residual=float(r.history("residual")[-1]),
                                  status_changes_total=int(ch.sum()), status_changes_after_2_ramps=int(ch[late].sum()),
                                  last_change_time=float(t[ch > 0].max()) if np.any(ch > 0) else 0.0))
-    write_csv(ctx.out / "scope.csv", rows)
+    write_csv(ctx, ctx.out / "scope.csv", rows)
     for r in rows:
         print(f"{r['multiplier']} tresca_scope = {r['tresca_scope']:7s}: converged {r['converged']}, {r['steps']} steps, "
               f"residual {r['final_residual']:.2e}, status changes {r['status_changes_total']} "
@@ -288,7 +293,7 @@ def longrun(ctx):
                          flips_per_node_per_period=float(ch[hold].sum() / nc / periods),
                          penetration_first_period=float(pen[hold][t[hold] < t[hold][0] + period].max()),
                          penetration_last_period=float(pen[hold][t[hold] > t[hold][-1] - period].max())))
-    write_csv(ctx.out / "longrun.csv", rows)
+    write_csv(ctx, ctx.out / "longrun.csv", rows)
     for r in rows:
         print(f"{r['multiplier']}: {r['steps']} undamped steps ({r['periods']:.0f} periods of the lowest mode, "
               f"{r['wall_seconds']:.1f} s): balance error max {r['balance_error_max']:.2e}, kinetic/W_ext at the end "
@@ -304,11 +309,14 @@ def main():
     ap.add_argument("--out", default="study/stability", help="output directory")
     ap.add_argument("--threads", type=int, default=1, help="OMP_NUM_THREADS of the runs (default 1)")
     ap.add_argument("--rerun", action="store_true", help="redo runs even if their .h5 exists")
+    ap.add_argument("--force", action="store_true",
+                    help="replace the parts' CSVs and PNGs already in --out (refused otherwise, before any run)")
     ctx = ap.parse_args()
     ctx.exe = find_exe(ctx.exe)
     ctx.out = Path(ctx.out)
     ctx.out.mkdir(parents=True, exist_ok=True)
-    parts = ["penalty", "infsup", "ramp", "scope", "longrun"] if ctx.part == "all" else [ctx.part]
+    parts = list(PRODUCTS) if ctx.part == "all" else [ctx.part]
+    refuse_existing("stability_study.py", [ctx.out / name for part in parts for name in PRODUCTS[part]], ctx.force)
     for part in parts:
         print(f"\n=== {part} ===")
         globals()[part](ctx)

@@ -1,10 +1,12 @@
 #!/usr/bin/python3
-"""Tests of the study scripts' command lines (postproc/hertz_study.py, paper_study.py, c2drun.py).
+"""Tests of the study scripts' command lines (postproc/hertz_study.py, paper_study.py, c2drun.py, and
+the products of every study script: postproc/outfile.py).
 
     CONTACT2D=build/bin/contact2d /usr/bin/python3 tests/postproc/test_study_scripts.py [-v]
 
 What a study writes and what it reuses: tracked docs only when asked, runs reused only when they
-are finished runs of the same settings, one line (not a traceback) for a bad option. The tests
+are finished runs of the same settings, tables and figures replaced only with --force, one line
+(not a traceback) for a bad option. The tests
 that run contact2d need CONTACT2D (set by ctest) and are skipped without it; the hertz_study ones
 need Gmsh too. Scripts that write into the source tree are run from a copy of postproc/ in a
 temporary tree, so the repository's docs are never touched.
@@ -140,9 +142,16 @@ class Reuse(Base):
         out = self.path("paper")
         p = self.script("paper_study.py", "--exe", EXE, "--levels", "0-1", "--tol", "1e-4", "--out", out)
         self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        before = {name: digest(os.path.join(out, name)) for name in os.listdir(out)}
+        # a second study into the same folder: refused before any run (the old code replaced the
+        # tables and figures, and reran the runs, silently)
+        self.one_line(self.script("paper_study.py", "--exe", EXE, "--levels", "0-1", "--out", out),
+                      r"refused: .*convergence\.csv exists \(pass --force")
+        self.assertEqual({name: digest(os.path.join(out, name)) for name in os.listdir(out)}, before)
         # the default --tol: the old code reused the 1e-4 runs silently
-        p = self.script("paper_study.py", "--exe", EXE, "--levels", "0-1", "--out", out)
+        p = self.script("paper_study.py", "--exe", EXE, "--levels", "0-1", "--out", out, "--force")
         self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        self.assertNotEqual(digest(os.path.join(out, "convergence.csv")), before["convergence.csv"])
         self.assertIn("rerunning", p.stdout)
         self.assertNotIn("reusing", p.stdout)
         for name in ("p1_k0.h5", "p1_k1.h5", "p0_k0.h5", "p0_k1.h5"):
@@ -153,9 +162,10 @@ class Reuse(Base):
                         "-o", h5, "--force", "--set", "mesh:level=0", "--set", "solver:tol_residual=1e-10"],
                        check=True, capture_output=True)
         self.assertEqual(self.attrs(h5)[0]["method"], "static")
-        p = self.script("paper_study.py", "--exe", EXE, "--levels", "0-1", "--out", out)
+        p = self.script("paper_study.py", "--exe", EXE, "--levels", "0-1", "--out", out, "--force")
         self.assertEqual(p.returncode, 0, p.stderr[-2000:])
         self.assertIn("rerunning %s" % h5, p.stdout)
+        self.assertIn("reusing %s" % os.path.join(out, "p0_k1.h5"), p.stdout)
         self.assertEqual(self.attrs(h5)[0]["method"], "explicit")
 
 
@@ -184,6 +194,54 @@ class PaperStudy(Base):
             self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
         self.assertFalse(os.path.exists(os.path.join(out, "rates.csv")))
 
+
+
+class Products(Base):
+    """Every study script refuses, before any run, a table or figure of its own already there."""
+    CASES = (("paper_study.py", ["--levels", "0-1"], "convergence.png"),
+             ("paper_study.py", ["--levels", "1"], "p1_sign.csv"),
+             ("hertz_study.py", [], "geometry_study.md"),
+             ("impact_study.py", ["--figures", "{out}"], "impact_study.csv"),
+             ("impact_study.py", ["--figures", "{out}"], "impact_energy.png"),
+             ("stability_study.py", ["penalty"], "penalty.png"),
+             ("stability_study.py", ["all"], "longrun.csv"),
+             ("coulomb_path_study.py", [], "coulomb_path.png"),
+             ("speed_accuracy.py", ["--no-getfem"], "speed_accuracy.csv"))
+
+    def test_existing_product_needs_force(self):
+        # the old scripts ran (here a contact2d that fails at once) and replaced them silently
+        for script, args, name in self.CASES:
+            with self.subTest(script=script, product=name):
+                out = self.path(script + "_" + name)
+                os.mkdir(out)
+                with open(os.path.join(out, name), "w") as fh:
+                    fh.write("the user's file\n")
+                p = self.script(script, "--exe", "/bin/false", "--out", out, *[a.format(out=out) for a in args])
+                self.one_line(p, r"^%s: refused: .*%s exists \(pass --force" % (script, name))
+                self.assertEqual(os.listdir(out), [name])          # nothing run, nothing written
+                with open(os.path.join(out, name)) as fh:
+                    self.assertEqual(fh.read(), "the user's file\n")
+
+    def test_help_names_force(self):
+        for script in sorted({c[0] for c in self.CASES}):
+            with self.subTest(script=script):
+                self.assertIn("--force", self.script(script, "--help").stdout)
+
+    def test_save_figure_keeps_the_format(self):
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        from outfile import OutputRefused, save_figure
+        fig = plt.figure()
+        png = self.path("f.png")
+        save_figure(fig, png)
+        with open(png, "rb") as fh:
+            self.assertEqual(fh.read(8), b"\x89PNG\r\n\x1a\n")
+        with self.assertRaises(OutputRefused):
+            save_figure(fig, png)
+        save_figure(fig, self.path("f.pdf"), force=True)
+        self.assertEqual(sorted(os.listdir(self.dir)), ["f.pdf", "f.png"])
+        plt.close(fig)
 
 
 class Modules(Base):
