@@ -9,7 +9,8 @@
 run(..., reuse=True) keeps an existing output only when reuse_problem() finds nothing against it:
 a finished contact2d run (status in FINISHED, per method) of the same deck text, by the same
 method, whose effective deck holds every value of `sets` (the &output group excepted: it does not
-change the results); otherwise the run is redone and one line says why.
+change the results); otherwise the run is redone and one line says why. reference_problem() is
+the same question for a GetFEM reference (postproc/getfem_reference.py) of a contact2d output.
 
 Only the standard library is needed, and h5py (postproc/c2dh5.py) for reuse.
 """
@@ -68,37 +69,42 @@ def _same_value(want, have):
     return a == b or abs(a - b) <= 1e-12 * max(abs(a), abs(b))
 
 
+def _root_attrs(path, needs=()):
+    """An HDF5 file's root attributes as text, or None when it cannot be read or lacks a dataset of
+    `needs` (written last: a file cut short has not got it)."""
+    import h5py
+    try:
+        with h5py.File(str(path), "r") as f:
+            if not all(name in f for name in needs):
+                return None
+            return {k: v.decode() if isinstance(v, bytes) else str(v) for k, v in f.attrs.items()}
+    except OSError:
+        return None
+
+
 def reuse_problem(output, deck, sets=None, method="explicit", statuses=None):
     """None when output is a finished run that run(deck, output, sets) would make again, else why not
     (a few words). statuses: the accepted final statuses (default FINISHED[method])."""
-    import h5py
-
     sys.path.insert(0, str(Path(__file__).resolve().parent))
     from c2dh5 import parse_effective_deck
 
-    def text(v):
-        return v.decode() if isinstance(v, bytes) else str(v)
-
-    try:
-        with h5py.File(str(output), "r") as f:
-            attrs = {k: f.attrs[k] for k in ("program", "status", "method", "deck", "effective_deck")
-                     if k in f.attrs}
-    except OSError:
+    attrs = _root_attrs(output)
+    if attrs is None:
         return "not a readable HDF5 file"
-    if text(attrs.get("program", "")) != "contact2d":
+    if attrs.get("program", "") != "contact2d":
         return "not a contact2d output file"
-    status = text(attrs.get("status", "?"))
+    status = attrs.get("status", "?")
     if status not in (statuses or FINISHED[method]):
         return f"status '{status}'"
-    if text(attrs.get("method", "?")) != method:
-        return f"method '{text(attrs.get('method', '?'))}', not '{method}'"
+    if attrs.get("method", "?") != method:
+        return f"method '{attrs.get('method', '?')}', not '{method}'"
     try:
         deck_text = Path(deck).read_text()
     except OSError:
         deck_text = None
-    if deck_text is None or text(attrs.get("deck", "")) != deck_text:
+    if deck_text is None or attrs.get("deck", "") != deck_text:
         return f"made from another text of {Path(deck).name}"
-    eff = parse_effective_deck(text(attrs.get("effective_deck", "")))
+    eff = parse_effective_deck(attrs.get("effective_deck", ""))
     for key, want in (sets or {}).items():
         group, _, var = key.partition(":")
         if group.lower() == "output":
@@ -107,6 +113,26 @@ def reuse_problem(output, deck, sets=None, method="explicit", statuses=None):
         have = g.get(var.lower()) if isinstance(g, dict) else None
         if have is None or not _same_value(want, have):
             return f"{key} = {have if have is not None else '?'}, not {_fmt(want)}"
+    return None
+
+
+def reference_problem(ref, source, program="getfem_reference", **want):
+    """None when ref is a complete, converged `program` reference of the problem of the contact2d
+    output `source` (the same effective deck) whose root attributes hold `want` (e.g.
+    friction='tresca'), else why not (a few words)."""
+    attrs = _root_attrs(ref, needs=("final/displacement",))
+    if attrs is None:
+        return "not a complete HDF5 reference file"
+    if attrs.get("program") != program:
+        return f"program '{attrs.get('program', '?')}', not '{program}'"
+    if attrs.get("status") != "converged":
+        return f"status '{attrs.get('status', '?')}'"
+    src = _root_attrs(source) or {}
+    if attrs.get("effective_deck") != src.get("effective_deck", "?"):
+        return f"made for another problem than {source}"
+    for key, value in want.items():
+        if attrs.get(key) != str(value):
+            return f"{key} '{attrs.get(key, '?')}', not '{value}'"
     return None
 
 

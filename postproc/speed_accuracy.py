@@ -12,7 +12,9 @@ a level-(max+1) run made here), and solves the same problem on the same meshes w
 static reference (postproc/getfem_reference.py; its assembly + solve time, Python start-up
 excluded). Writes speed_accuracy.csv and speed_accuracy.png (log-log, GetFEM on the same axes);
 those already in --out are refused before any run (one line, exit 2) unless --force, and each is
-written beside its name and moved into place (postproc/outfile.py).
+written beside its name and moved into place (postproc/outfile.py). --reuse keeps finished runs of
+the same settings and a getfem_*.h5 that is a complete, converged reference of the same run's problem
+(c2drun.reference_problem); any other is recomputed, one line says why.
 """
 import argparse
 import csv
@@ -24,7 +26,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, run  # noqa: E402
+from c2drun import ROOT, find_exe, reference_problem, run  # noqa: E402
 from compare import compare  # noqa: E402
 from outfile import refuse_existing, replacing, save_figure  # noqa: E402
 
@@ -41,7 +43,8 @@ def main():
     ap.add_argument("--threads", type=int, default=1, help="OMP_NUM_THREADS of the timed runs (default 1)")
     ap.add_argument("--no-getfem", action="store_true")
     ap.add_argument("--reuse", action="store_true",
-                    help="keep runs that finished with the same deck and settings (their timings too)")
+                    help="keep runs that finished with the same deck and settings (their timings too), and "
+                         "GetFEM references that are complete and converged for the same run's problem")
     ap.add_argument("--force", action="store_true",
                     help="replace speed_accuracy.csv and .png already in --out (refused otherwise, before any run)")
     args = ap.parse_args()
@@ -91,7 +94,10 @@ def main():
             if not args.no_getfem:
                 src = out / f"{m}_k{k}_t{RAMPS[1]:.1e}_tol{TOLS[-1]:.0e}.h5"
                 gf = out / f"getfem_{m}_k{k}.h5"
-                if not (args.reuse and gf.is_file()):
+                why = reference_problem(gf, src, friction="tresca") if args.reuse else "no --reuse"
+                if why is not None:
+                    if args.reuse and gf.exists():
+                        print(f"recomputing {gf}: {why}", flush=True)
                     proc = subprocess.run(["/usr/bin/python3", str(ROOT / "postproc" / "getfem_reference.py"), str(src),
                                            "-o", str(gf), "--force", "--friction", "tresca"], capture_output=True, text=True)
                     if proc.returncode != 0:

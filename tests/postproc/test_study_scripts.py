@@ -168,6 +168,32 @@ class Reuse(Base):
         self.assertIn("reusing %s" % os.path.join(out, "p0_k1.h5"), p.stdout)
         self.assertEqual(self.attrs(h5)[0]["method"], "explicit")
 
+    def test_speed_accuracy_reuses_only_a_reference_of_the_same_problem(self):
+        import h5py
+        out = self.path("sa")
+        args = ["--exe", EXE, "--levels", "0", "--reference-dir", self.path("none"), "--out", out, "--force"]
+        p = self.script("speed_accuracy.py", *args)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        gf1, gf0 = (os.path.join(out, "getfem_%s_k0.h5" % m) for m in ("p1", "p0"))
+        kept = digest(gf0)
+        # the P0 reference under the P1 name: the old code reused any getfem_*.h5 that existed
+        shutil.copy(gf0, gf1)
+        p = self.script("speed_accuracy.py", *args, "--reuse")
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        self.assertIn("recomputing %s: made for another problem" % gf1, p.stdout)
+        self.assertEqual(self.attrs(gf1)[0]["multiplier"], "P1")
+        self.assertNotIn("recomputing %s" % gf0, p.stdout)
+        self.assertEqual(digest(gf0), kept)      # a reference of the same problem is kept
+        # a reference cut short, and one that did not converge
+        with open(gf1, "r+b") as fh:
+            fh.truncate(4096)
+        with h5py.File(gf0, "r+") as f:
+            f.attrs["status"] = "not converged"
+        p = self.script("speed_accuracy.py", *args, "--reuse")
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        self.assertIn("recomputing %s: not a complete HDF5 reference file" % gf1, p.stdout)
+        self.assertIn("recomputing %s: status 'not converged'" % gf0, p.stdout)
+        self.assertEqual(self.attrs(gf0)[0]["status"], "converged")
 
 
 class PaperStudy(Base):
