@@ -2,7 +2,7 @@
 """Impact on the rigid plane against the exact 1D wave solution (issue 12, docs/impact.md).
 
     /usr/bin/python3 postproc/impact_study.py [--out study/impact] [--levels 2 3 4 5]
-                                              [--figures docs/figures] [--rerun] [--exe PATH] [--force]
+                                              [--figures DIR] [--rerun] [--exe PATH] [--force]
 
 Runs inputs/impact_bar_p1.nml, _p0.nml and _penalty.nml (k_p = 1e6 and 1e7 MPa/mm) at
 dt/dt_critical = 0.5, 0.9, 1.0 (solver:dt_factor; dt = dt_critical is accepted, only a dt above
@@ -15,9 +15,9 @@ energy returned to the rebounding body (kinetic + strain at the end, and the rig
 estimate h/(2L) (the bottom row of nodes, mass rho lx h/2, stopped dead once), the largest
 penetration and the energy balance error. Figures: <figures>/impact_force.png (force histories
 against the exact plateau) and <figures>/impact_energy.png (energy lost and rebound error against
-h). Runs are reused when their .h5 exists (--rerun redoes them). The table and figures already
-there (the tracked docs/figures ones by default) are refused before any run (one line, exit 2)
-unless --force; each is written beside its name and moved into place (postproc/outfile.py).
+h); --figures defaults to --out (the tracked ones: --figures docs/figures --force). Runs are
+reused when their .h5 exists (--rerun redoes them). The table and figures already there are
+refused before any run (one line, exit 2) unless --force; each is written beside its name and moved into place (postproc/outfile.py).
 """
 import argparse
 import csv
@@ -174,7 +174,8 @@ def figures(rows, args):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", type=Path, default=ROOT / "study" / "impact")
-    ap.add_argument("--figures", type=Path, default=ROOT / "docs" / "figures")
+    ap.add_argument("--figures", type=Path, default=None,
+                    help="folder of the two figures (default: --out; docs/figures holds the tracked ones)")
     ap.add_argument("--levels", type=int, nargs="+", default=[2, 3, 4, 5])
     ap.add_argument("--exe", default=None)
     ap.add_argument("--rerun", action="store_true")
@@ -184,6 +185,7 @@ def main():
     args = ap.parse_args()
     args.exe = find_exe(args.exe)
     args.out.mkdir(parents=True, exist_ok=True)
+    args.figures = args.figures or args.out
     args.figures.mkdir(parents=True, exist_ok=True)
     refuse_existing("impact_study.py", [args.out / "impact_study.csv", args.figures / "impact_force.png",
                                         args.figures / "impact_energy.png"], args.force)
