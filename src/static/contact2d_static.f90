@@ -22,7 +22,7 @@ module contact2d_static
    use contact2d_cholmod, only: cholmod_t, dense_lauum, dense_potrf, dense_potrs, dense_gesv
    implicit none
    private
-   public :: static_t, kkt_names, singular_pivot_ratio, pdas_solve, max_pdas
+   public :: static_t, kkt_names, kkt_values, singular_pivot_ratio, pdas_solve, max_pdas
 
    !> KKT residual names (summary and HDF5 attributes kkt_<name>), all relative.
    character(len=24), parameter :: kkt_names(4) = [character(len=24) :: &
@@ -872,20 +872,15 @@ contains
       end do
    end subroutine classify
 
-   !> Relative KKT residuals of the state (docs/static.md), from the full displacement u:
-   !> normal feasibility max(d, 0) / max|u| (P0: (D d)_i / w_i); complementarity
-   !> max(|F d|, max(-F, 0) max|u|) / (max F max|u|) per node (P0: mu and (D d)/w per cell);
-   !> friction max(|F_t| - s w, 0) / max(s w) and max|s w |psi| - F_t psi| / (max(s w) max|u|);
-   !> equilibrium ||f_ext + F_c - K u||_inf on the free dofs / max(reaction, f_ext, F_c).
+   !> The KKT residuals of the state (kkt_values), from the full displacement u and u_prev, the
+   !> displacement at the start of the increment.
    subroutine kkt_residuals(this, model, uprev)
       type(static_t), intent(inout) :: this
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: uprev(:, :)
-      real(wp) :: umax, d(this%nc), e(this%nc), lam(this%nc), lmax, psi, r, rfree, scale, limk(this%nt)
-      integer :: i, n, c, k
+      real(wp) :: d(this%nc), e(this%nc), lam(this%nc), limk(this%nt), ftk(this%nt), psi(this%nt)
+      integer :: i, n, k
 
-      this%kkt = 0
-      umax = max(maxval(abs(this%u)), tiny(1.0_wp))
       if (this%nc > 0) then
          do i = 1, this%nc
             d(i) = dot_product(this%u(:, model%contact%node(i)), model%contact%normal(:, i)) - model%contact%gap(i)
@@ -898,40 +893,68 @@ contains
             e = d
             lam = this%fn
          end if
-         lmax = max(maxval(abs(lam)), tiny(1.0_wp))
-         this%kkt(1) = max(maxval(e), 0.0_wp)/umax
-         ! (lmax umax floored: both may be near tiny on the first of many small increments, and
-         ! their product would be 0, the ratio 0/0)
-         this%kkt(2) = max(maxval(abs(lam*e))/max(lmax*umax, tiny(1.0_wp)), maxval(-lam)/lmax, 0.0_wp)
          ! the limits of the final forces (Tresca s_i w_i; Coulomb mu F_n,i; tresca_scope =
          ! 'contact': none out of contact), so a node without a limit must carry no F_t
          call law_limits(this, model, this%fn, this%mu, limk)
-         lmax = max(absmax(limk), tiny(1.0_wp))
          do k = 1, this%nt
             i = this%cnode(this%nc + k)
             n = model%contact%node(i)
-            psi = dot_product(this%u(:, n) - uprev(:, n), model%contact%tangent(:, i))
-            associate (ft => this%ft(i), s => limk(k))
-               this%kkt(3) = max(this%kkt(3), max(abs(ft) - s, 0.0_wp)/lmax, &
-                                 abs(s*abs(psi) - ft*psi)/max(lmax*umax, tiny(1.0_wp)))
-            end associate
+            ftk(k) = this%ft(i)
+            psi(k) = dot_product(this%u(:, n) - uprev(:, n), model%contact%tangent(:, i))
+         end do
+      end if
+      this%kkt = kkt_values(this%u, e, lam, ftk, limk, psi, this%fext, this%fc, this%fint, this%dof > 0)
+   end subroutine kkt_residuals
+
+   !> The four relative KKT residuals (kkt_names, docs/static.md "Algorithm" 6) on plain arrays.
+   !> u: the full displacement (2, nnode), for max|u|. Per contact node (P0: per dual cell) e the
+   !> normal distance d = u.n - g (P0: (D d)_i / w_i) and lam its multiplier (F_n; P0: mu_n).
+   !> Per tangential unknown ft its F_t, lim its friction limit (s w, mu F_n, 0) and psi its
+   !> tangential displacement in the increment, (u - u_prev).t. The body receives -F_t t, so
+   !> friction opposes the slip when F_t psi = lim |psi|. Per dof (2, nnode): fext, fc (the contact
+   !> force on the body), fint = K u, free (.false. on prescribed dofs, whose residual is their
+   !> reaction).
+   !>   normal feasibility   max(e, 0) / max|u|
+   !>   complementarity      max(|lam e| / (max|lam| max|u|), max(-lam, 0) / max|lam|)
+   !>   friction             max(|F_t| - lim, 0) / max lim and |lim |psi| - F_t psi| / (max lim max|u|)
+   !>   equilibrium          ||fext + fc - fint||_inf on the free dofs / max(reaction, fext, fc)
+   !> Without contact (size(e) = 0) the first three are 0.
+   pure function kkt_values(u, e, lam, ft, lim, psi, fext, fc, fint, free) result(kkt)
+      real(wp), intent(in) :: u(:, :), e(:), lam(:), ft(:), lim(:), psi(:), fext(:, :), fc(:, :), fint(:, :)
+      logical, intent(in) :: free(:, :)
+      real(wp) :: kkt(4)
+      real(wp) :: umax, lmax, r, rfree, scale
+      integer :: n, c, k
+
+      kkt = 0
+      umax = max(maxval(abs(u)), tiny(1.0_wp))
+      if (size(e) > 0) then
+         lmax = max(maxval(abs(lam)), tiny(1.0_wp))
+         kkt(1) = max(maxval(e), 0.0_wp)/umax
+         ! (lmax umax floored: both may be near tiny on the first of many small increments, and
+         ! their product would be 0, the ratio 0/0)
+         kkt(2) = max(maxval(abs(lam*e))/max(lmax*umax, tiny(1.0_wp)), maxval(-lam)/lmax, 0.0_wp)
+         lmax = max(absmax(lim), tiny(1.0_wp))
+         do k = 1, size(ft)
+            kkt(3) = max(kkt(3), max(abs(ft(k)) - lim(k), 0.0_wp)/lmax, &
+                         abs(lim(k)*abs(psi(k)) - ft(k)*psi(k))/max(lmax*umax, tiny(1.0_wp)))
          end do
       end if
       rfree = 0
       scale = 0
-      do n = 1, this%nnode
+      do n = 1, size(u, 2)
          do c = 1, 2
-            r = this%fext(c, n) + this%fc(c, n) - this%fint(c, n)
-            if (this%dof(c, n) > 0) then
+            r = fext(c, n) + fc(c, n) - fint(c, n)
+            if (free(c, n)) then
                rfree = max(rfree, abs(r))
             else
                scale = max(scale, abs(r))
             end if
-            scale = max(scale, abs(this%fext(c, n)), abs(this%fc(c, n)))
+            scale = max(scale, abs(fext(c, n)), abs(fc(c, n)))
          end do
       end do
-      this%kkt(4) = merge(rfree/scale, rfree, scale > 0)
-   end subroutine kkt_residuals
+      kkt(4) = merge(rfree/scale, rfree, scale > 0)
+   end function kkt_values
 
    !> max |x|, 0 for an empty x.
    pure real(wp) function absmax(x)
