@@ -927,19 +927,7 @@ contains
       integer :: n, c, k
 
       kkt = 0
-      umax = max(maxval(abs(u)), tiny(1.0_wp))
-      if (size(e) > 0) then
-         lmax = max(maxval(abs(lam)), tiny(1.0_wp))
-         kkt(1) = max(maxval(e), 0.0_wp)/umax
-         ! (lmax umax floored: both may be near tiny on the first of many small increments, and
-         ! their product would be 0, the ratio 0/0)
-         kkt(2) = max(maxval(abs(lam*e))/max(lmax*umax, tiny(1.0_wp)), maxval(-lam)/lmax, 0.0_wp)
-         lmax = max(absmax(lim), tiny(1.0_wp))
-         do k = 1, size(ft)
-            kkt(3) = max(kkt(3), max(abs(ft(k)) - lim(k), 0.0_wp)/lmax, &
-                         abs(lim(k)*abs(psi(k)) - ft(k)*psi(k))/max(lmax*umax, tiny(1.0_wp)))
-         end do
-      end if
+      ! equilibrium first: its force scale also scales the friction residual when no node has a limit
       rfree = 0
       scale = 0
       do n = 1, size(u, 2)
@@ -953,7 +941,27 @@ contains
             scale = max(scale, abs(fext(c, n)), abs(fc(c, n)))
          end do
       end do
-      kkt(4) = merge(rfree/scale, rfree, scale > 0)
+      ! (nothing loaded, nothing reacting: the residual is the absolute one, 0/0 never formed)
+      kkt(4) = rfree
+      if (scale > 0) kkt(4) = rfree/scale
+      umax = max(maxval(abs(u)), tiny(1.0_wp))
+      if (size(e) > 0) then
+         lmax = max(maxval(abs(lam)), tiny(1.0_wp))
+         kkt(1) = max(maxval(e), 0.0_wp)/umax
+         ! (lmax umax floored: both may be near tiny on the first of many small increments, and
+         ! their product would be 0, the ratio 0/0)
+         kkt(2) = max(maxval(abs(lam*e))/max(lmax*umax, tiny(1.0_wp)), maxval(-lam)/lmax, 0.0_wp)
+         ! no limit anywhere (Coulomb with every node separated, tresca_scope = 'contact' with none
+         ! in contact): any F_t is wrong, measured against the problem's forces (F_c holds F_t, so
+         ! the ratio is finite), not against a limit of 0
+         lmax = absmax(lim)
+         if (lmax == 0) lmax = scale
+         lmax = max(lmax, tiny(1.0_wp))
+         do k = 1, size(ft)
+            kkt(3) = max(kkt(3), max(abs(ft(k)) - lim(k), 0.0_wp)/lmax, &
+                         abs(lim(k)*abs(psi(k)) - ft(k)*psi(k))/max(lmax*umax, tiny(1.0_wp)))
+         end do
+      end if
    end function kkt_values
 
    !> max |x|, 0 for an empty x.
