@@ -6,7 +6,7 @@ plane (a curved Gamma_c). Both are half models on Gmsh meshes graded towards the
 With the run's own total normal force P (2 x the half model's sum), 2D Hertz gives
     a = sqrt(4 P R / (pi E*)), p0 = 2 P / (pi a), E* = E / (1 - nu^2)
 (postproc/hertz.py). Checked: convergence, a/R <= 0.1, the run's contact half-width (farthest node
-in contact) within one boundary element of a, the pressure at the centre within 2 % of p0, no
+in contact) within one boundary element of a, the pressure at the centre within 1 % of p0, no
 penetration; for the circle, /contact/gap and /contact/normal against |x - C| - R and
 -(x - C)/|x - C| computed here. The L2 error decreasing with level is the study's
 (postproc/hertz_study.py, docs/geometry.md), too slow for the suite.
@@ -33,10 +33,16 @@ def body(t):
     m = hertz.measure(run.h5)
     t.check_equal(run, "converged", 1, m["converged"])
     t.info(run, "P (N/mm), a (mm), p0 (MPa)", "%.6g %.6g %.6g" % (m["P"], m["a"], m["p0"]))
-    t.check_le(run, "a / R", m["a"] / m["R"], 0.1)
-    t.check_le(run, "|a_run - a| / (boundary element at a_run)", abs(m["a_fe"] - m["a"]) / m["h_edge"], 1.0)
-    t.check_close(run, "pressure at the centre vs p0", m["p0"], m["p0_fe"], rtol=0.02,
-                  reason="the issue's acceptance: 2 % (holds at the shipped level 0)")
+    t.check_le(run, "a / R", m["a"] / m["R"], 0.1,
+               reason="Hertz's small-contact assumption (a << R); measured 0.044 indenter, 0.052 cylinder")
+    t.check_le(run, "|a_run - a| / (boundary element at a_run)", abs(m["a_fe"] - m["a"]) / m["h_edge"], 1.0,
+               reason="the run's edge is a node: it resolves a only to one element; measured 0.40, 0.65")
+    # The centre pressure's error is the graded level-0 mesh's discretisation plus Hertz's
+    # half-space idealisation of a finite body (a/R = 0.044, 0.052). Measured |p0_run/p0 - 1|:
+    # indenter 0.059 % (P1), 0.023 % (P0); cylinder 0.59 % (P1), 0.48 % (P0), the static engine the
+    # same. 1 % is the largest with a margin of 1.7 (was 2 %, the acceptance).
+    t.check_close(run, "pressure at the centre vs p0", m["p0"], m["p0_fe"], rtol=0.01,
+                  reason="mesh + half-space idealisation; measured <= 0.59 % (cylinder P1)")
     t.info(run, "L2 error of p on Gamma_c / L2 norm of p", "%.4g" % m["l2_rel"])
     with run.open() as f:
         x = f["mesh/coordinates"][()]

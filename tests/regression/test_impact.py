@@ -11,7 +11,7 @@ sample at every step, at levels 2 (shipped), 3 and 4:
   the bottom would penetrate, t0 - dt <= t_first < t0);
 - duration = 2L/c within 2 % plus two steps; contact over before t_end;
 - mean pressure over the contact = rho c v0 within 2 % (at level 4; levels 2 and 3 printed);
-- rebound velocity within 5 % of v0 at the shipped level, closer at each finer level; the
+- rebound velocity within 3 % of v0 at the shipped level, closer at each finer level; the
   normal contact work (kinetic energy removed by the forward increment) shrinks with the mesh;
 - no penetration: per node (P1) or per dual cell (P0), <= 1e-12 g0 at every step;
 - energy balance (initial kinetic energy and normal contact work included) <= 1e-10 at every step.
@@ -75,8 +75,12 @@ def lagrange(t, name):
         t.info(run, "rebound velocity / v0", "%.5f (normal contact work / E0 %.5f)" % (
             me["rebound_velocity"] / ex["v0"], me["normal_work"]))
         if level == SHIPPED:
+            # the rebound loses the normal contact work (each node stopped perfectly inelastically,
+            # an O(h) energy loss) and the vibration energy left in the bar: measured 2.44 % low at
+            # level 2, 1.47 % at 3, 0.90 % at 4 (order 0.7); 3 % is the level-2 value with a margin
+            # of 1.23 (was 5 %, issue 12's acceptance)
             t.check_close(run, "rebound velocity [mm/s] = +v0 (shipped level)", ex["v0"], me["rebound_velocity"],
-                          rtol=0.05, reason="issue 12 (5 % at the shipped level)")
+                          rtol=0.03, reason="O(h) inelastic node stops; measured 2.44 % at the shipped level")
         t.check_ge(run, "normal contact work / E0 >= 0", me["normal_work"], 0.0,
                    reason="the forward increment only removes kinetic energy (perfectly inelastic node stops)")
         t.check_le(run, "penetration (max over steps) [mm]", me["penetration_max"], 1e-12 * ex["gap"],

@@ -11,7 +11,7 @@ Facts checked, each recomputed here from the HDF5 file (numpy only) rather than 
    held to 1e-12.
 1b. The same KKT check on Gmsh meshes: hertz_cylinder P1/P0 (graded mesh, curved Gamma_c) and
    hertz_indenter P1 (circle obstacle, per-node normals), and 2D Hertz as test_hertz.py checks
-   the explicit runs (contact half-width within one boundary element, centre pressure within 2 %).
+   the explicit runs (contact half-width within one boundary element, centre pressure within 1 %).
 2. Patch test: patch_compression (P1, P0) gives the exact linear field and the uniform pressure
    E delta / (H (1 - nu^2)) to round-off.
 3. The explicit end state at tol_residual = 1e-12 equals the static solution to 1e-9 in the
@@ -23,7 +23,8 @@ Facts checked, each recomputed here from the HDF5 file (numpy only) rather than 
 7. Refusals: penalty contact, compare_static with penalty, a singular stiffness (a free rigid
    mode), an unknown method, static_increments = 0: one line on stderr, exit 1, no file.
 8. Agreement with the GetFEM reference (postproc/getfem_reference.py, level 2, Tresca P1/P0) to
-   that test's tolerance 1e-6 (tests/regression/test_getfem.py), where python3-getfem is present.
+   1e-9 (a direct solve: measured 4e-13; test_getfem.py's 1e-6 is for the explicit engine's
+   relaxation), where python3-getfem is present.
 """
 import importlib.util
 import os
@@ -105,8 +106,8 @@ def body(t):
         m = hertz.measure(run.h5)
         t.check_le(run, "a / R", m["a"] / m["R"], 0.1)
         t.check_le(run, "|a_run - a| / (boundary element at a_run)", abs(m["a_fe"] - m["a"]) / m["h_edge"], 1.0)
-        t.check_close(run, "pressure at the centre vs Hertz p0", m["p0"], m["p0_fe"], rtol=0.02,
-                      reason="test_hertz.py's acceptance (2 %) for the same mesh")
+        t.check_close(run, "pressure at the centre vs Hertz p0", m["p0"], m["p0_fe"], rtol=0.01,
+                      reason="test_hertz.py's bound (1 %, measured <= 0.59 %) for the same mesh")
 
     # 2. patch test
     p_exact = E * 1e-3 / (0.5 * (1 - NU ** 2))
