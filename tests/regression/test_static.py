@@ -144,7 +144,11 @@ def body(t):
             us, ue = a["final/displacement"][()], b["final/displacement"][()]
             dist = np.sqrt(fem_q1.energy_from_element_matrices(coords, conn, ue - us, E, NU) /
                            fem_q1.energy_from_element_matrices(coords, conn, us, E, NU))
-            t.check_le(ex, "||u_explicit - u_static||_a / ||u_static||_a", dist, 1e-9)
+            # stopping at a relative residual r = 1e-12 leaves ||e||_K / ||u||_K = sqrt(r'K^-1 r / f'K^-1 f)
+            # <= sqrt(cond K) 1e-12 (times the max-to-2-norm factor); measured 1.7e-10 (P1),
+            # 1.6e-10 (P0): 1e-9 is a margin of 6 (cond K at level 3 not computed here)
+            t.check_le(ex, "||u_explicit - u_static||_a / ||u_static||_a", dist, 1e-9,
+                       reason="tol_residual 1e-12 x sqrt(cond K); measured 1.7e-10")
             attr = float(b.attrs["static_distance_energy"])
             t.check_close(ex, "attribute static_distance_energy (compare_static)", dist, attr, atol=1e-12)
             t.check_equal(ex, "attribute static_converged", 1, int(b.attrs["static_converged"]))

@@ -116,7 +116,8 @@ def body(t):
             t.check(st, "partial slip (some nodes stick, some slip)", (status == 1).any() and (status == 2).any(),
                     "stick and slip", np.bincount(status, minlength=3).tolist())
             dist = energy_distance(a, b)
-            t.check_le(ex, "||u_explicit - u_static||_K / ||u_static||_K (press stage)", dist, 1e-9)
+            t.check_le(ex, "||u_explicit - u_static||_K / ||u_static||_K (press stage)", dist, 1e-9,
+                       reason="as test_static.py: tol_residual 1e-12 x sqrt(cond K); measured 2.4e-13 (P1, P0)")
             t.check_close(ex, "attribute static_distance_energy (compare_static)", dist,
                           float(b.attrs["static_distance_energy"]), atol=1e-12)
             t.check_equal(ex, "attribute static_converged", 1, int(b.attrs["static_converged"]))
