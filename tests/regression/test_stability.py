@@ -96,7 +96,10 @@ def body(t):
     t.check_ge(run, "dt_stable_estimate / true limit (power iteration bounds omega from below)",
                dt_est / dt_true, 1 - 1e-9, reason="Rayleigh quotient <= lambda_max; 1e-9 for round-off")
     t.check_le(run, "dt_stable_estimate / true limit (power iteration close to omega_max)",
-               dt_est / dt_true, 1.05, reason="100 power iterations: within 5 % is enough for the 1.1x run")
+               dt_est / dt_true, 1.001,
+               reason="100 power iterations: measured <= 1.00002 on all seven scenes (was 1.05: 'enough for "
+                      "the 1.1x run'); the Rayleigh quotient's error is the top-two-mode gap share, "
+                      "test_stiffness.pf")
 
     t.info(run, "history samples", hist["time"].size)
     t.check(run, "history finite", all(np.all(np.isfinite(v)) for v in hist.values()), "all finite",

@@ -133,10 +133,12 @@ def body(t):
         t.info(run, "mean stage-2 slip sum(w |slip|) / L", "%.6e mm" % (predicted / S / L))
         t.info(run, "friction dissipation at the snapshot (interpolated)", "%.6e mJ" % d_snap)
         t.check_le(run, "interpolation bracket of D_friction at the snapshot / stage-2 work",
-                   abs(interp_unc) / max(abs(d_stage2), 1e-300), 1e-3,
-                   reason="history is sampled every few steps; the bracket must be << the 1 % check")
-        t.check_close(run, "stage-2 friction dissipation vs s sum_i w_i |slip_i|", predicted, d_stage2, rtol=1e-2,
-                      reason="issue 3: within 1 % (nodes that stick for part of the stage dissipate nothing)")
+                   abs(interp_unc) / max(abs(d_stage2), 1e-300), 1e-4,
+                   reason="history is sampled every few steps; measured 8.3e-6 (level 2), 2e-18 (level 1); "
+                          "must be << the 1e-3 check (was 1e-3)")
+        t.check_close(run, "stage-2 friction dissipation vs s sum_i w_i |slip_i|", predicted, d_stage2, rtol=1e-3,
+                      reason="nodes that stick for part of the stage dissipate nothing, plus the bracket above; "
+                             "measured 1.8e-5 (level 2), 2e-11 (level 1): margin 55 (was 1 %, issue 3)")
 
         # -- energy balance --------------------------------------------------------------------------
         t.check_le(run, "energy_balance_error at every sample", hist["energy_balance_error"], 1e-12,
