@@ -49,8 +49,8 @@ contains
       type(thread_tuner_t) :: tuner
       integer(i8) :: fallback_step
       real(wp) :: static_dist
-      logical :: static_converged, static_written, static_opened
-      character(len=:), allocatable :: static_msg
+      logical :: static_converged, static_written, static_opened, static_ended, ended
+      character(len=:), allocatable :: static_msg, dest
 
       call system_clock(clock0, rate)
       call tuner%begin()  ! the set-up window of the thread tuner (contact2d_threads)
@@ -117,10 +117,13 @@ contains
          stat = sys_signals_install()
          if (stat /= 0) call fail(2, 'cannot install the SIGINT/SIGTERM handler: '//sys_strerror(stat))
          call static_run(deck, model, opath%partial, .false., clock0, stat, errmsg, sidecar=opath%xmf_partial, &
-                         target=opath%target, written=static_written, opened=static_opened)
+                         target=opath%target, written=static_written, opened=static_opened, &
+                         replacing=opath%replacing, ended=static_ended)
          if (static_written) then
-            call opath%publish(i, static_msg)
+            dest = opath%destination(static_ended)
+            call opath%publish(i, static_msg, static_ended)
             if (i /= 0) call fail(2, static_msg)
+            keep_partial = dest /= opath%target   ! kept at its temporary name: not removed below
          else if (stat == 2 .and. static_opened) then
             call fail_write(errmsg//'; what was written so far is in '//opath%partial)
          else if (stat == 2) then
@@ -128,9 +131,9 @@ contains
          end if
          i = sys_signal_pending()
          if (i /= 0) then
-            call opath%abandon(.false.)
+            call opath%abandon(keep_partial)
             if (static_written) then
-               static_msg = '; '//cli%output//" holds the increments done (status 'interrupted')"
+               static_msg = '; '//dest//" holds the increments done (status 'interrupted')"//kept_note(dest)
             else
                static_msg = ' during the static engine''s set-up; nothing was written'
             end if
@@ -139,7 +142,7 @@ contains
             stop 128 + i, quiet=.true.
          end if
          if (stat /= 0) call fail(stat, errmsg)
-         call opath%abandon(.false.)
+         call opath%abandon(keep_partial)
          return
       end if
       omega2_power = 0
@@ -317,11 +320,14 @@ contains
       call out%file%attr(out%file%id, 'dt_fallback_step', int(fallback_step))
       call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
       if (stat /= 0) call fail_write(errmsg//'; what was written so far is in '//opath%partial)
-      ! complete: move the files into place (every end: converged or not, blow-up, interrupted)
-      call opath%publish(stat, errmsg)
+      ! complete: move the files into place (every end: converged or not, blow-up, interrupted;
+      ! but a run that did not reach its end does not replace an existing result, docs/output.md)
+      ended = .not. any(status == [character(len=24) :: 'interrupted', 'blow-up', 'contact solver failure'])
+      dest = opath%destination(ended)
+      call opath%publish(stat, errmsg, ended)
       if (stat /= 0) call fail(2, errmsg)
-      keep_partial = .false.
-            call summary(model, deck, solver, cli%output, converged, status, residual, wall, timings, dt_initial, fallback_step)
+      keep_partial = dest /= opath%target   ! kept at its temporary name: fail() below must not remove it
+            call summary(model, deck, solver, dest, converged, status, residual, wall, timings, dt_initial, fallback_step)
       if (tuner%active) write (output_unit, '(a)') ' threads             auto: '//str(tuner%nmax)//' on '// &
          fixed(100*real(tuner%steps(2), wp)/max(1.0_wp, real(sum(tuner%steps), wp)), 1)//' % of the steps, 1 on the rest ('// &
          'started on '//str(tuner%started)//', '//str(tuner%switches)//' switches; set OMP_NUM_THREADS to fix the count)'
@@ -332,8 +338,8 @@ contains
       if (status == 'interrupted') then
          stat = sys_signal_pending()
          write (error_unit, '(a)') program_name//': interrupted by '//trim(merge('SIGINT ', 'SIGTERM', stat == 2))// &
-            ' at step '//str(solver%step)//' (t = '//str(solver%time)//' s); '//cli%output// &
-            " holds the state at that step (status 'interrupted')"
+            ' at step '//str(solver%step)//' (t = '//str(solver%time)//' s); '//dest// &
+            " holds the state at that step (status 'interrupted')"//kept_note(dest)
          stop 128 + stat, quiet=.true.
       else if (sys_signal_pending() /= 0) then
          ! a signal after the steps (during solver:compare_static): the run's file is complete
@@ -348,11 +354,11 @@ contains
          call fail(2, 'the run blew up at step '//str(solver%step)//' (t = '//str(solver%time)// &
                    ' s): kinetic energy '//str(solver%kinetic)//' mJ exceeds 1000 x the work put in ('// &
                    str(solver%work_in)//' mJ) with dt = '//fixed(model%dt/model%dt_critical, 3)// &
-                   ' dt_critical; '//cli%output//' holds the history up to the failure')
+                   ' dt_critical; '//dest//' holds the history up to the failure'//kept_note(dest))
       end if
       if (model%contact%stat /= 0) then
-         call fail(2, model%contact%errmsg//' at step '//str(solver%step)//'; '//cli%output// &
-                   ' holds the history up to the failure')
+         call fail(2, model%contact%errmsg//' at step '//str(solver%step)//'; '//dest// &
+                   ' holds the history up to the failure'//kept_note(dest))
       end if
    end subroutine driver_main
 
@@ -367,6 +373,16 @@ contains
       if (k <= deck%output%nsnapshot) step = max(step0 + 1, step0 + ceiling((deck%output%snapshot_times(k) - time0)/dt &
                                                                             - 1.0e-9_wp, i8))
    end function next_snapshot
+
+   !> '' when the run's file went to the output, else (a run that did not reach its end would
+   !> have replaced an existing result: outpath destination) a note that the result was kept.
+   function kept_note(dest) result(note)
+      character(len=*), intent(in) :: dest
+      character(len=:), allocatable :: note
+      note = ''
+      if (dest /= opath%target) note = '; the existing '//opath%target//' is kept (--force replaces a result '// &
+                                       'only with a run that reaches its end)'
+   end function kept_note
 
    !> One line on stderr, release the output lock (removing temporary files unless the partial
    !> result is worth keeping), exit with the code.

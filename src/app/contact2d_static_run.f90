@@ -25,7 +25,10 @@ contains
    !> Output safety (issue 9): the driver passes the temporary file as `path`, the sidecar's
    !> temporary name as `sidecar` and the final name as `target`; `written` tells it whether the
    !> file was finished (then it is moved into place), `opened` whether it was created at all.
-   subroutine static_run(deck, model, path, overwrite, clock0, code, errmsg, sidecar, target, written, opened)
+   !> `replacing`: the target exists and --force replaces it; a run that does not reach its end
+   !> (`ended` false: interrupted, solver failure) then keeps its file at `path` (docs/output.md).
+   subroutine static_run(deck, model, path, overwrite, clock0, code, errmsg, sidecar, target, written, opened, &
+                         replacing, ended)
       type(deck_t), intent(in) :: deck
       type(model_t), intent(inout) :: model
       character(len=*), intent(in) :: path
@@ -35,6 +38,8 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       character(len=*), intent(in), optional :: sidecar, target
       logical, intent(out), optional :: written, opened
+      logical, intent(in), optional :: replacing
+      logical, intent(out), optional :: ended
       type(static_t) :: st
       type(explicit_t), target :: state
       type(output_t) :: out
@@ -43,7 +48,7 @@ contains
       real(wp) :: t_end, t, wall, timings(4), w_prev, wf, wn, kkt_max(4), residual
       real(wp), allocatable :: uprev(:, :), react_prev(:, :), fext_prev(:, :), fn_prev(:), d(:), dprev(:)
       logical :: converged, ok
-      character(len=:), allocatable :: message, status, reason
+      character(len=:), allocatable :: message, status, reason, final
 
       code = 1
       reason = ''
@@ -203,6 +208,12 @@ contains
          return
       end if
       if (present(written)) written = .true.
+      if (present(ended)) ended = status /= 'interrupted' .and. status /= 'static solver failure'
+      final = path
+      if (present(target)) final = target
+      if (present(target) .and. present(replacing)) then
+         if (replacing .and. (status == 'interrupted' .or. status == 'static solver failure')) final = path
+      end if
       call summary()
       call st%free()
       if (converged) then
@@ -212,11 +223,9 @@ contains
          code = 2
          errmsg = 'static engine: '//status
          if (len(reason) > 0) errmsg = errmsg//': '//reason
-         if (present(target)) then
-            errmsg = errmsg//'; '//target//' holds the last iterate'
-         else
-            errmsg = errmsg//'; '//path//' holds the last iterate'
-         end if
+         errmsg = errmsg//'; '//final//' holds the last iterate'
+         if (present(target) .and. final == path) errmsg = errmsg//'; the existing '//target// &
+            ' is kept (--force replaces a result only with a run that reaches its end)'
       end if
    contains
       subroutine summary()
@@ -241,11 +250,7 @@ contains
             ' s (assembly + factorisation '//fixed(st%time_factor, 3)//', condensation '// &
             fixed(st%time_condense, 3)//', increments '//fixed(st%time_pdas, 3)//')'
          write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s'
-         if (present(target)) then
-            write (output_unit, '(a)') ' output              '//target
-         else
-            write (output_unit, '(a)') ' output              '//path
-         end if
+         write (output_unit, '(a)') ' output              '//final
          write (output_unit, '(a)') repeat('-', 72)
       end subroutine summary
    end subroutine static_run

@@ -37,12 +37,16 @@ module contact2d_outpath
       character(len=:), allocatable :: xlock        !< .OUT.xmf.lock ('' without sidecar)
       character(len=:), allocatable :: stale        !< OUT.xmf of the replaced result, to remove
       logical :: force = .false.
+      !> --force and OUT.h5 existed when the lock was taken: only a run that reaches its end
+      !> replaces it (destination)
+      logical :: replacing = .false.
       integer :: fd = -1                            !< lock descriptor (-1: not locked)
       integer :: xfd = -1                           !< sidecar lock descriptor
    contains
       procedure :: check => outpath_check
       procedure :: acquire => outpath_acquire
       procedure :: publish => outpath_publish
+      procedure :: destination => outpath_destination
       procedure :: abandon => outpath_abandon
    end type outpath_t
 
@@ -207,26 +211,43 @@ contains
             return
          end if
       end if
-      if (.not. this%force) then
-         call sys_path_info(this%target, kind, dev, ino, size, e)
-         if (kind /= kind_missing) then
-            call this%abandon(.false.)
-            errmsg = "output file '"//this%target//"' exists; use --force to overwrite it or -o to choose another"
-            return
-         end if
+      call sys_path_info(this%target, kind, dev, ino, size, e)
+      this%replacing = kind /= kind_missing
+      if (this%replacing .and. .not. this%force) then
+         call this%abandon(.false.)
+         errmsg = "output file '"//this%target//"' exists; use --force to overwrite it or -o to choose another"
+         return
       end if
       stat = 0
       errmsg = ''
    end subroutine outpath_acquire
 
-   !> Move the complete files into place (sidecar first), then release the lock.
-   subroutine outpath_publish(this, stat, errmsg)
+   !> Where a finished file ends: the target, except for a run that did not reach its end (ended
+   !> false: interrupted, blow-up, solver failure) replacing an existing result with --force,
+   !> which keeps its file under the temporary name and leaves that result as it is.
+   function outpath_destination(this, ended) result(path)
+      class(outpath_t), intent(in) :: this
+      logical, intent(in) :: ended
+      character(len=:), allocatable :: path
+      path = this%target
+      if (this%replacing .and. .not. ended) path = this%partial
+   end function outpath_destination
+
+   !> Move the complete files into place (sidecar first), then release the lock. ended: the run
+   !> reached its end (see destination); if not, and it would replace a result, the file stays
+   !> at its temporary name (its sidecar, which names the target, is removed).
+   subroutine outpath_publish(this, stat, errmsg, ended)
       class(outpath_t), intent(inout) :: this
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
+      logical, intent(in) :: ended
       integer :: err
       stat = 0
       errmsg = ''
+      if (this%destination(ended) /= this%target) then
+         call this%abandon(.true.)
+         return
+      end if
       if (len(this%xmf) > 0) then
          err = sys_publish(this%xmf_partial, this%xmf, this%force)
          if (err /= 0) then

@@ -3,6 +3,9 @@
 - SIGINT / SIGTERM mid-run: exit 130 / 143, one line on stderr, OUT.h5 in place with status
   'interrupted', the history up to the stop, /final and the sidecar; no temporary file or lock left.
   The same for the static engine (--static) between its increments.
+- A --force run over an existing result that does not reach its end (SIGTERM, SIGINT to the static
+  engine, a blow-up): the result and its sidecar are byte for byte intact, the run's complete file
+  is kept as OUT.h5.<pid>.partial with its status, named on the one stderr line.
 - kill -9 of a --force run over an existing result: the result is byte for byte intact, the
   killed run's OUT.h5.<pid>.partial is there and opens (what was flushed is readable).
 - Two runs on one output: while one writes, a second --force run is refused with one line and
@@ -100,6 +103,38 @@ def check_interrupt(t, sig, code, static=False):
                 True, True)
     t.check(name, "sidecar written", os.path.exists(os.path.join(folder, "out.xmf")), True,
             os.path.exists(os.path.join(folder, "out.xmf")))
+
+
+def check_force_unfinished(t, name, deck, args, sig, code, status):
+    """--force over a good result by a run that does not reach its end (a signal, a blow-up): the
+    good result and its sidecar stay byte for byte, the run's file is kept, complete and readable,
+    at its temporary name with its status, and the one stderr line names it and the kept result."""
+    folder = t.subdir(name)
+    rc, err, _ = finish(start(t, folder, t.deck(UNIAXIAL), []))
+    t.require(rc == 0, name + ": the first result exists")
+    before = {n: sha(os.path.join(folder, n)) for n in ("out.h5", "out.xmf")}
+    proc = start(t, folder, t.deck(deck), args + ["--force"])
+    if sig is not None:
+        t.require(wait_for(os.path.join(folder, "out.h5.%d.partial" % proc.pid)) is not None,
+                  name + ": the --force run started writing")
+        time.sleep(1.0)
+        proc.send_signal(sig)
+    rc, err, _ = finish(proc)
+    err = [line for line in err if ": warning: " not in line]   # dt above the limit is warned about
+    partial = "out.h5.%d.partial" % proc.pid
+    t.check_equal(name, "exit code", code, rc)
+    t.check_equal(name, "lines on stderr (besides warnings)", 1, len(err))
+    t.check(name, "the line names the kept file and the kept result",
+            bool(err) and partial in err[0] and "the existing out.h5 is kept" in err[0],
+            partial + " ... the existing out.h5 is kept", err[0] if err else "")
+    for n in before:
+        t.check_equal(name, "existing %s unchanged (sha256)" % n, before[n], sha(os.path.join(folder, n)))
+    t.check_equal(name, "only the run's file left beside the result", [partial], leftovers(folder))
+    with h5py.File(os.path.join(folder, partial), "r") as f:
+        t.check_equal(name, "the kept file's status", status, c2dtest.attr_str(f.attrs["status"]))
+        t.check(name, "the kept file is complete (/final/displacement finite)",
+                np.isfinite(f["final/displacement"][:]).all(), True, True)
+    os.remove(os.path.join(folder, partial))
 
 
 def check_interrupt_comparison(t, sig, code):
@@ -209,6 +244,12 @@ def body(t):
     check_interrupt(t, signal.SIGTERM, 143, static=True)
     check_interrupt_comparison(t, signal.SIGINT, 130)
     check_interrupt_comparison(t, signal.SIGTERM, 143)
+    # ---- --force over a result by a run that does not reach its end: the result is kept -------
+    check_force_unfinished(t, "force_sigterm", LONG, LONG_ARGS, signal.SIGTERM, 143, "interrupted")
+    check_force_unfinished(t, "force_static_sigint", LONG, STATIC_ARGS, signal.SIGINT, 130, "interrupted")
+    check_force_unfinished(t, "force_blow_up", "baillet_sassi_2002_p1.nml",
+                           ["--set", "mesh:level=2", "--set", "solver:dt_factor=1.6",
+                            "--set", "solver:allow_unstable=.true."], None, 2, "blow-up")
 
     # ---- kill -9 of a --force run over an existing result -----------------------------------
     name = "kill9"
