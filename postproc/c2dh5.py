@@ -9,7 +9,6 @@ Only the standard library, numpy and h5py are needed (Debian: python3-numpy pyth
 import re
 
 import h5py
-import numpy as np
 
 _GROUP = re.compile(r"^\s*&(\w+)\s*$")
 _ITEM = re.compile(r"^\s*(\w+)\s*=\s*(.*?)\s*$")

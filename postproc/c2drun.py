@@ -185,16 +185,17 @@ def levels_or_exit(text, option, prog):
         sys.exit(2)
 
 
-def out_dir(path, prog):
-    """Create the study folder path (and its parents); one line on stderr and exit 2 if it cannot be."""
+def out_dir(path, prog, option="--out"):
+    """Create the study folder path (and its parents) given as `option`; one line on stderr and exit 2
+    if it cannot be."""
     p = Path(path)
     if p.exists() and not p.is_dir():
-        print(f"{prog}: refused: --out {p} exists and is not a folder", file=sys.stderr)
+        print(f"{prog}: refused: {option} {p} exists and is not a folder", file=sys.stderr)
         sys.exit(2)
     try:
         p.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
-        print(f"{prog}: refused: --out {p}: {exc.strerror or exc}", file=sys.stderr)
+        print(f"{prog}: refused: {option} {p}: {exc.strerror or exc}", file=sys.stderr)
         sys.exit(2)
     return p
 

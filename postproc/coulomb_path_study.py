@@ -31,7 +31,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2drun import ROOT, find_exe  # noqa: E402
+from c2drun import ROOT, find_exe, out_dir  # noqa: E402
 from compare import compare  # noqa: E402
 from outfile import refuse_existing, replacing, save_figure  # noqa: E402
 
@@ -100,8 +100,7 @@ def main():
                     help="replace the CSVs and PNG already in --out (refused otherwise, before any run)")
     args = ap.parse_args()
     exe = find_exe(args.exe)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = out_dir(args.out, "coulomb_path_study.py")
     refuse_existing("coulomb_path_study.py", [out / "coulomb_path.csv", out / "coulomb_large_mu.csv",
                                               out / "coulomb_path.png"], args.force)
     factors = [float(x) for x in args.factors.split(",")]

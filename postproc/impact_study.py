@@ -21,7 +21,6 @@ refused before any run (one line, exit 2) unless --force; each is written beside
 """
 import argparse
 import csv
-import math
 import sys
 from pathlib import Path
 
@@ -29,7 +28,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, run  # noqa: E402
+from c2drun import ROOT, find_exe, out_dir, run  # noqa: E402
 from impact_measure import exact, measure  # noqa: E402
 from outfile import refuse_existing, replacing, save_figure  # noqa: E402
 
@@ -184,9 +183,8 @@ def main():
                          "before any run)")
     args = ap.parse_args()
     args.exe = find_exe(args.exe)
-    args.out.mkdir(parents=True, exist_ok=True)
-    args.figures = args.figures or args.out
-    args.figures.mkdir(parents=True, exist_ok=True)
+    args.out = out_dir(args.out, "impact_study.py")
+    args.figures = out_dir(args.figures, "impact_study.py", "--figures") if args.figures else args.out
     refuse_existing("impact_study.py", [args.out / "impact_study.csv", args.figures / "impact_force.png",
                                         args.figures / "impact_energy.png"], args.force)
     rows = []

@@ -22,11 +22,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
-
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, reference_problem, run  # noqa: E402
+from c2drun import ROOT, find_exe, levels_or_exit, out_dir, reference_problem, run  # noqa: E402
 from compare import compare  # noqa: E402
 from outfile import refuse_existing, replacing, save_figure  # noqa: E402
 
@@ -37,7 +35,7 @@ TOLS = (1e-4, 1e-6, 1e-8)
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--exe", help="contact2d executable (default build/bin/contact2d)")
-    ap.add_argument("--levels", default="1-5")
+    ap.add_argument("--levels", default="1-5", help="mesh levels, e.g. 1-5, 1,3 or 2 (default 1-5)")
     ap.add_argument("--reference-dir", default="study/paper", help="where paper_study.py left p1_k6.h5, p0_k6.h5")
     ap.add_argument("--out", default="study/speed_accuracy")
     ap.add_argument("--threads", type=int, default=1, help="OMP_NUM_THREADS of the timed runs (default 1)")
@@ -49,11 +47,9 @@ def main():
                     help="replace speed_accuracy.csv and .png already in --out (refused otherwise, before any run)")
     args = ap.parse_args()
     exe = find_exe(args.exe)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    levels = levels_or_exit(args.levels, "--levels", "speed_accuracy.py")
+    out = out_dir(args.out, "speed_accuracy.py")
     refuse_existing("speed_accuracy.py", [out / "speed_accuracy.csv", out / "speed_accuracy.png"], args.force)
-    a, _, b = args.levels.partition("-")
-    levels = list(range(int(a), int(b or a) + 1))
 
     refs = {}
     for m in ("p1", "p0"):

@@ -15,12 +15,11 @@ import csv
 import sys
 from pathlib import Path
 
-import h5py
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, run  # noqa: E402
+from c2drun import ROOT, find_exe, out_dir, run  # noqa: E402
 from compare import compare  # noqa: E402
 from outfile import refuse_existing, replacing, save_figure  # noqa: E402
 
@@ -313,8 +312,7 @@ def main():
                     help="replace the parts' CSVs and PNGs already in --out (refused otherwise, before any run)")
     ctx = ap.parse_args()
     ctx.exe = find_exe(ctx.exe)
-    ctx.out = Path(ctx.out)
-    ctx.out.mkdir(parents=True, exist_ok=True)
+    ctx.out = out_dir(ctx.out, "stability_study.py")
     parts = list(PRODUCTS) if ctx.part == "all" else [ctx.part]
     refuse_existing("stability_study.py", [ctx.out / name for part in parts for name in PRODUCTS[part]], ctx.force)
     for part in parts:

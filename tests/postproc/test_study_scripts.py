@@ -197,15 +197,6 @@ class Reuse(Base):
 
 
 class PaperStudy(Base):
-    def test_out_that_is_a_file(self):
-        # the old code: FileExistsError traceback
-        f = self.path("taken")
-        with open(f, "w") as fh:
-            fh.write("the user's file\n")
-        self.one_line(self.script("paper_study.py", "--levels", "0-1", "--out", f), "refused: --out .*not a folder")
-        with open(f) as fh:
-            self.assertEqual(fh.read(), "the user's file\n")
-
     def test_bad_levels(self):
         self.one_line(self.script("paper_study.py", "--levels", "0-x", "--out", self.path("o")), "refused: --levels")
 
@@ -220,6 +211,33 @@ class PaperStudy(Base):
             self.assertTrue(os.path.isfile(os.path.join(out, name)), name)
         self.assertFalse(os.path.exists(os.path.join(out, "rates.csv")))
 
+
+
+class OutFolder(Base):
+    """Every study script makes its folders with c2drun.out_dir: one line, not a traceback."""
+    CASES = (("paper_study.py", [], "--out"), ("hertz_study.py", [], "--out"), ("impact_study.py", [], "--out"),
+             ("impact_study.py", ["--out", "{dir}"], "--figures"), ("stability_study.py", ["penalty"], "--out"), ("coulomb_path_study.py", [], "--out"),
+             ("speed_accuracy.py", [], "--out"))
+
+    def test_folder_that_is_a_file(self):
+        # the old code: FileExistsError (or NotADirectoryError) traceback
+        f = self.path("taken")
+        with open(f, "w") as fh:
+            fh.write("the user's file\n")
+        for script, args, option in self.CASES:
+            with self.subTest(script=script, option=option):
+                p = self.script(script, "--exe", "/bin/false", option, f, *[a.format(dir=self.dir) for a in args])
+                self.one_line(p, r"^%s: refused: %s .*taken exists and is not a folder" % (script, option))
+        with open(f) as fh:
+            self.assertEqual(fh.read(), "the user's file\n")
+
+    def test_speed_accuracy_levels(self):
+        # the old code parsed --levels itself: ValueError ('x') and IndexError ('2-1') tracebacks
+        for levels in ("x", "2-1"):
+            with self.subTest(levels=levels):
+                p = self.script("speed_accuracy.py", "--exe", "/bin/false", "--levels", levels, "--out", self.path("o"))
+                self.one_line(p, r"^speed_accuracy\.py: refused: --levels '%s'" % levels)
+        self.assertFalse(os.path.exists(self.path("o")))
 
 
 class Products(Base):
