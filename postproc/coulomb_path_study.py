@@ -33,7 +33,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2drun import ROOT, find_exe, out_dir  # noqa: E402
 from compare import compare  # noqa: E402
-from outfile import refuse_existing, replacing, save_figure  # noqa: E402
+from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 STROKES = {"sliding": 5.0e-3, "partial": 4.0e-4}
@@ -213,4 +213,5 @@ def plot(rows, path_effect, png, args):
 
 
 if __name__ == "__main__":
-    main()
+    with refusal_exits("coulomb_path_study.py"):
+        main()

@@ -29,7 +29,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import hertz  # noqa: E402
 import lame  # noqa: E402
 from c2drun import ROOT, find_exe, levels_or_exit, out_dir, run  # noqa: E402
-from outfile import refuse_existing, replacing, save_figure  # noqa: E402
+from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
 
 PROG = "hertz_study.py"
 
@@ -160,4 +160,5 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    with refusal_exits(PROG):
+        main()

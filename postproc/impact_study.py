@@ -30,7 +30,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
 from c2drun import ROOT, find_exe, out_dir, run  # noqa: E402
 from impact_measure import exact, measure  # noqa: E402
-from outfile import refuse_existing, replacing, save_figure  # noqa: E402
+from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
 
 METHODS = [  # label, deck, extra settings
     ("P1", "impact_bar_p1.nml", {}),
@@ -217,4 +217,5 @@ def main():
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    with refusal_exits("impact_study.py"):
+        sys.exit(main())

@@ -15,6 +15,9 @@ reports) before any run and write each one through replacing:
 
     refuse_existing("paper_study.py", [out / "convergence.csv", ...], force=args.force)  # or exit 2
     save_figure(fig, out / "convergence.png", force=args.force, dpi=130)
+
+and run their main() in `with refusal_exits("paper_study.py"):`, so that a product that appeared
+while the study ran is one line and exit 2 as well.
 """
 import contextlib
 import os
@@ -84,12 +87,20 @@ def replacing(path, force=False):
 
 def refuse_existing(prog, paths, force=False):
     """check_target on each of a study's products; the first refused: one line on stderr, exit 2."""
-    for path in paths:
-        try:
+    with refusal_exits(prog):
+        for path in paths:
             check_target(path, force=force)
-        except OutputRefused as e:
-            print("%s: refused: %s" % (prog, e), file=sys.stderr)
-            sys.exit(2)
+
+
+@contextlib.contextmanager
+def refusal_exits(prog):
+    """An OutputRefused raised in the block (e.g. a product that appeared while the study ran):
+    one line on stderr, exit 2, not a traceback."""
+    try:
+        yield
+    except OutputRefused as e:
+        print("%s: refused: %s" % (prog, e), file=sys.stderr)
+        sys.exit(2)
 
 
 def save_figure(fig, path, force=False, **kwargs):

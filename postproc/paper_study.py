@@ -30,7 +30,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
 from c2drun import ROOT, find_exe, levels_or_exit, out_dir, reuse_problem, run  # noqa: E402
-from outfile import refuse_existing, replacing, save_figure  # noqa: E402
+from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
 from compare import compare  # noqa: E402
 
 MULTIPLIERS = ("P1", "P0")
@@ -303,4 +303,5 @@ def p1_sign(files, levels, path, force):
 
 
 if __name__ == "__main__":
-    main()
+    with refusal_exits("paper_study.py"):
+        main()

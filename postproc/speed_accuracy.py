@@ -26,7 +26,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
 from c2drun import ROOT, find_exe, levels_or_exit, out_dir, reference_problem, run  # noqa: E402
 from compare import compare  # noqa: E402
-from outfile import refuse_existing, replacing, save_figure  # noqa: E402
+from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
 
 RAMPS = (0.5e-6, 2.5e-6, 1.0e-5)
 TOLS = (1e-4, 1e-6, 1e-8)
@@ -146,4 +146,5 @@ def plot(rows, path, levels, force):
 
 
 if __name__ == "__main__":
-    main()
+    with refusal_exits("speed_accuracy.py"):
+        main()

@@ -21,7 +21,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
 from c2drun import ROOT, find_exe, out_dir, run  # noqa: E402
 from compare import compare  # noqa: E402
-from outfile import refuse_existing, replacing, save_figure  # noqa: E402
+from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
 
 E, NU, H, DELTA = 7.0e4, 0.3, 0.5, 1.0e-3
 PRODUCTS = {"penalty": ("penalty.csv", "penalty.png"), "infsup": ("infsup.csv", "infsup.png"),
@@ -321,4 +321,5 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    with refusal_exits("stability_study.py"):
+        main()

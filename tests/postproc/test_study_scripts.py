@@ -266,6 +266,27 @@ class Products(Base):
                 with open(os.path.join(out, name)) as fh:
                     self.assertEqual(fh.read(), "the user's file\n")
 
+    @unittest.skipUnless(EXE, "set CONTACT2D=path/to/contact2d to run")
+    def test_product_that_appears_meanwhile(self):
+        # a contact2d that puts a file under the product's name beside its output, then runs: the old
+        # studies died with an OutputRefused traceback
+        for script, args, name in (("paper_study.py", ["--levels", "0"], "convergence.csv"),
+                                   ("paper_study.py", ["--levels", "0"], "fig3_contact_stress.png"),
+                                   ("speed_accuracy.py", ["--levels", "0", "--no-getfem", "--reference-dir",
+                                                          self.path("none")], "speed_accuracy.png")):
+            with self.subTest(script=script, product=name):
+                out = self.path(script + "_" + name)
+                exe = self.path("contact2d_" + name)
+                with open(exe, "w") as fh:
+                    fh.write('#!/bin/sh\nfor a; do [ "$prev" = -o ] && echo "the user\'s file" > "${a%%/*}/%s"; '
+                             'prev=$a; done\nexec "%s" "$@"\n' % (name, EXE))
+                os.chmod(exe, 0o755)
+                p = self.script(script, "--exe", exe, "--out", out, *args)
+                self.one_line(p, r"^%s: refused: .*%s appeared while this command ran; not replaced$"
+                              % (script, name))
+                with open(os.path.join(out, name)) as fh:
+                    self.assertEqual(fh.read(), "the user's file\n")
+
     def test_help_names_force(self):
         for script in sorted({c[0] for c in self.CASES}):
             with self.subTest(script=script):
