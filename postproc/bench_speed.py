@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Speed benchmark of contact2d on the paper scene (issue 5): prints its figures.
 
-    /usr/bin/python3 postproc/bench_speed.py [--levels 3-6] [--repeats 3] [--out study/bench]
+    /usr/bin/python3 postproc/bench_speed.py [--levels 3-6] [--repeats 3] [--out study/bench] [--force]
 
 For each mesh level k (13 2^k x 3 2^k elements):
   1. step throughput: element-steps per second of the step loop (contact included) with 1 and 2
@@ -11,8 +11,10 @@ For each mesh level k (13 2^k x 3 2^k elements):
   3. the same problem solved by the GetFEM static reference on the same mesh, timed in the same
      run (median of --repeats; postproc/getfem_reference.py, Tresca when it converges, else the
      frictionless variant for both codes), and the ratio explicit / static.
-Then the targets of issue 5 with PASS/MISS. Timings are wall-clock on a shared machine: medians,
-and ratios of two things measured side by side.
+Then the targets of issue 5 with PASS/MISS, and the rows of the table in --out/bench.json; a
+bench.json already there is refused before any run (one line, exit 2) unless --force, and it is
+written beside its name and moved into place (postproc/outfile.py). Timings are wall-clock on a
+shared machine: medians, and ratios of two things measured side by side.
 
 Issue 13 figures (each section can be chosen with --sections):
   base     ns per element-step on one thread, this binary against --base-exe (the previous
@@ -51,11 +53,13 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, parse_levels, run  # noqa: E402
+from c2drun import ROOT, find_exe, out_dir, parse_levels, run  # noqa: E402
+from outfile import refusal_exits, refuse_existing, replacing  # noqa: E402
 
 DECK = ROOT / "inputs" / "baillet_sassi_2002_p1.nml"
 HERTZ_DECKS = ("hertz_cylinder_p1.nml", "hertz_indenter_p1.nml")
 PYTHON = "/usr/bin/python3"
+PROG = "bench_speed.py"
 
 
 def throughput(exe, out, level, repeats):
@@ -403,7 +407,13 @@ def main():
                     help="comma list of mass-scaling targets in units of dt_critical (default 4)")
     ap.add_argument("--tresca-threshold", type=float, default=200.0,
                     help="Tresca threshold [MPa] of the mass section's friction variant (default 200)")
+    ap.add_argument("--force", action="store_true",
+                    help="replace bench.json already in --out (refused otherwise, before any run)")
     args = ap.parse_args()
+    sections = set(args.sections.split(","))
+    out = out_dir(args.out, PROG)
+    if "issue5" in sections:
+        refuse_existing(PROG, [out / "bench.json"], args.force)
     print(machine_line(), flush=True)
     exe = find_exe(args.exe)
     for tag, e in (("build", exe), ("base build", args.base_exe)):
@@ -411,9 +421,6 @@ def main():
             # the second line of `contact2d --version`: compiler, flags, the sweep's lanes
             lines = subprocess.run([str(e), "--version"], stdout=subprocess.PIPE, text=True).stdout.splitlines()
             print(f"{tag}: {lines[1] if len(lines) > 1 else '(no build line: an older binary)'}", flush=True)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
-    sections = set(args.sections.split(","))
     levels = parse_levels(args.levels)
     if "base" in sections:
         section_base(exe, args.base_exe, out, levels, args.repeats)
@@ -485,9 +492,11 @@ def main():
         if r["level"] >= 5:
             print(f"  {'PASS' if r['speedup'] >= 1.7 else 'MISS'} >= 1.7x on two threads at k = {r['level']}: "
                   f"{r['speedup']:.2f}x")
-    (out / "bench.json").write_text(json.dumps(rows, indent=1))
+    with replacing(out / "bench.json", args.force) as tmp:
+        Path(tmp).write_text(json.dumps(rows, indent=1))
     print(f"wrote {out / 'bench.json'}")
 
 
 if __name__ == "__main__":
-    main()
+    with refusal_exits(PROG):
+        main()

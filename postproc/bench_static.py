@@ -2,7 +2,7 @@
 """Benchmark of the static engine (issue 14) on the paper scene: prints its figures.
 
     /usr/bin/python3 postproc/bench_static.py [--levels 4-6] [--repeats 3] [--explicit-repeats 1]
-                                              [--multiplier P1] [--out study/bench_static]
+                                              [--multiplier P1] [--out study/bench_static] [--force]
 
 For each mesh level k (13 2^k x 3 2^k elements), on one thread (OMP_NUM_THREADS=1):
   1. static solve time (contact2d --static: assembly + CHOLMOD factorisation, condensation onto
@@ -16,6 +16,8 @@ Timings are wall-clock on a possibly shared machine: medians, ratios of things m
 the CPU time of the whole static run (user + system, from the child's resource usage) is printed
 beside them, as it is less sensitive to the machine's load, with the load average before and after
 and the BLAS the executable loads (ldd: OpenBLAS or the system's libblas.so.3, docs/static.md "BLAS").
+The runs go to --out as static_kK.h5 and explicit_kK.h5 and are removed once read; a file of those
+names already there is refused before any run (one line, exit 2) unless --force.
 postproc/bench_speed.py can call static_times() for its own tables.
 """
 import argparse
@@ -28,8 +30,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, parse_levels, run  # noqa: E402
+from c2drun import ROOT, find_exe, levels_or_exit, out_dir, run  # noqa: E402
+from outfile import refuse_existing  # noqa: E402
 
+PROG = "bench_static.py"
 TARGETS = {5: 0.43, 6: 1.9}     # issue 14: CHOLMOD with the contact condensed [s]; target within 2x
 
 
@@ -80,11 +84,15 @@ def main():
     ap.add_argument("--multiplier", default="P1", choices=["P1", "P0"])
     ap.add_argument("--out", default=str(ROOT / "study" / "bench_static"), help="scratch directory")
     ap.add_argument("--exe", help="contact2d executable (default: $CONTACT2D or build/bin/contact2d)")
+    ap.add_argument("--force", action="store_true",
+                    help="replace static_kK.h5 / explicit_kK.h5 already in --out (refused otherwise, before any run)")
     args = ap.parse_args()
     exe = find_exe(args.exe)
     deck = ROOT / "inputs" / f"baillet_sassi_2002_{args.multiplier.lower()}.nml"
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    levels = levels_or_exit(args.levels, "--levels", PROG)
+    out = out_dir(args.out, PROG)
+    kinds = [kind for kind, n in (("static", args.repeats), ("explicit", args.explicit_repeats)) if n > 0]
+    refuse_existing(PROG, [out / f"{kind}_k{k}.h5" for k in levels for kind in kinds], args.force)
 
     print(f"static engine benchmark, paper scene {args.multiplier} Tresca, one thread; "
           f"medians of {args.repeats} static / {args.explicit_repeats} explicit run(s)")
@@ -94,7 +102,7 @@ def main():
               f"{'wall s':>8} {'cpu s':>7} {'explicit s':>11} {'steps':>8} {'expl/static':>12}")
     print(header)
     rows = {}
-    for level in parse_levels(args.levels):
+    for level in levels:
         st, ex = [], []
         for i in range(max(args.repeats, args.explicit_repeats)):
             if i < args.repeats:

@@ -5,9 +5,11 @@ Runs the paper scene (SPEC section 7) undamped over a fixed simulated time for d
 from 0.5 to 1.4, for the elastic body (no contact), P1 and P0 contact, frictionless, Tresca and
 Coulomb (mu = 0.3, issue 11), and the penalty method, and records whether each run stays bounded: exit status (the blow-up
 guard stops a run whose kinetic energy exceeds 1000 x the work put in), the largest kinetic
-energy over the largest external work, and max |u|. Writes stability.csv and stability.png.
+energy over the largest external work, and max |u|. Writes stability.csv and stability.png in
+--out; those already there are refused before any run (one line, exit 2) unless --force, and each is
+written beside its name and moved into place (postproc/outfile.py).
 
-    /usr/bin/python3 postproc/stability_sweep.py [--level 2] [--out study/stability]
+    /usr/bin/python3 postproc/stability_sweep.py [--level 2] [--out study/stability] [--reuse] [--force]
 
 dt_critical is the element bound 2/omega_max (penalty: the penalty-adjusted bound); the power
 iteration's estimate of the true limit is marked on the chart.
@@ -21,8 +23,10 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2drun import ROOT, find_exe, run, strip_group  # noqa: E402
+from c2drun import ROOT, find_exe, out_dir, run, strip_group  # noqa: E402
+from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
 
+PROG = "stability_sweep.py"
 METHODS = {
     # name: (deck, extra --set values, strip &contact)
     "elastic": ("baillet_sassi_2002_p1.nml", {}, True),
@@ -48,11 +52,13 @@ def main():
     ap.add_argument("--out", default="study/stability", help="output directory")
     ap.add_argument("--reuse", action="store_true", help="keep finished runs")
     ap.add_argument("--methods", help="comma-separated subset of the method names (default: all)")
+    ap.add_argument("--force", action="store_true",
+                    help="replace stability.csv and stability.png already in --out (refused otherwise, before any run)")
     args = ap.parse_args()
 
     exe = find_exe(args.exe)
-    out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    out = out_dir(args.out, PROG)
+    refuse_existing(PROG, [out / "stability.csv", out / "stability.png"], args.force)
     a, b, s = (float(x) for x in args.ratios.split(":"))
     ratios = np.round(np.arange(a, b + s / 2, s), 4)
 
@@ -94,7 +100,7 @@ def main():
                   f"steps {steps:6d}  max E_kin / max W_ext = {growth:9.3e}  max|u| = {umax:9.3e} mm")
 
     csv_path = out / "stability.csv"
-    with open(csv_path, "w", newline="") as fh:
+    with replacing(csv_path, args.force) as tmp, open(tmp, "w", newline="") as fh:
         w = csv.DictWriter(fh, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
@@ -135,9 +141,10 @@ def plot(rows, path, args):
     ax2.set_ylabel("max kinetic energy / max |external work|")
     ax2.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    save_figure(fig, path, args.force, dpi=120)
     print(f"wrote {path}")
 
 
 if __name__ == "__main__":
-    main()
+    with refusal_exits(PROG):
+        main()

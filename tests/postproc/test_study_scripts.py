@@ -217,7 +217,8 @@ class OutFolder(Base):
     """Every study script makes its folders with c2drun.out_dir: one line, not a traceback."""
     CASES = (("paper_study.py", [], "--out"), ("hertz_study.py", [], "--out"), ("impact_study.py", [], "--out"),
              ("impact_study.py", ["--out", "{dir}"], "--figures"), ("stability_study.py", ["penalty"], "--out"), ("coulomb_path_study.py", [], "--out"),
-             ("speed_accuracy.py", [], "--out"))
+             ("speed_accuracy.py", [], "--out"), ("stability_sweep.py", [], "--out"), ("bench_speed.py", [], "--out"),
+             ("bench_static.py", [], "--out"))
 
     def test_folder_that_is_a_file(self):
         # the old code: FileExistsError (or NotADirectoryError) traceback
@@ -241,7 +242,8 @@ class OutFolder(Base):
 
 
 class Products(Base):
-    """Every study script refuses, before any run, a table or figure of its own already there."""
+    """Every study script refuses, before any run, a table or figure of its own already there (the
+    benchmarks: bench.json, and bench_static.py the runs it would write and remove)."""
     CASES = (("paper_study.py", ["--levels", "0-1"], "convergence.png"),
              ("paper_study.py", ["--levels", "1"], "p1_sign.csv"),
              ("hertz_study.py", [], "geometry_study.md"),
@@ -250,7 +252,12 @@ class Products(Base):
              ("stability_study.py", ["penalty"], "penalty.png"),
              ("stability_study.py", ["all"], "longrun.csv"),
              ("coulomb_path_study.py", [], "coulomb_path.png"),
-             ("speed_accuracy.py", ["--no-getfem"], "speed_accuracy.csv"))
+             ("speed_accuracy.py", ["--no-getfem"], "speed_accuracy.csv"),
+             ("stability_sweep.py", ["--methods", "elastic", "--ratios", "0.5:0.5:0.1"], "stability.csv"),
+             ("stability_sweep.py", ["--methods", "elastic", "--ratios", "0.5:0.5:0.1"], "stability.png"),
+             ("bench_speed.py", ["--sections", "issue5", "--levels", "0", "--no-getfem"], "bench.json"),
+             ("bench_static.py", ["--levels", "0"], "static_k0.h5"),
+             ("bench_static.py", ["--levels", "0"], "explicit_k0.h5"))
 
     def test_existing_product_needs_force(self):
         # the old scripts ran (here a contact2d that fails at once) and replaced them silently
@@ -273,7 +280,9 @@ class Products(Base):
         for script, args, name in (("paper_study.py", ["--levels", "0"], "convergence.csv"),
                                    ("paper_study.py", ["--levels", "0"], "fig3_contact_stress.png"),
                                    ("speed_accuracy.py", ["--levels", "0", "--no-getfem", "--reference-dir",
-                                                          self.path("none")], "speed_accuracy.png")):
+                                                          self.path("none")], "speed_accuracy.png"),
+                                   ("stability_sweep.py", ["--methods", "elastic", "--ratios", "0.5:0.5:0.1",
+                                                           "--level", "0", "--time", "3e-6"], "stability.png")):
             with self.subTest(script=script, product=name):
                 out = self.path(script + "_" + name)
                 exe = self.path("contact2d_" + name)
