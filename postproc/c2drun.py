@@ -10,7 +10,8 @@ run(..., reuse=True) keeps an existing output only when reuse_problem() finds no
 a finished contact2d run (status in FINISHED, per method) of the same deck text, by the same
 method, whose effective deck holds every value of `sets` (the &output group excepted: it does not
 change the results); otherwise the run is redone and one line says why. reference_problem() is
-the same question for a GetFEM reference (postproc/getfem_reference.py) of a contact2d output.
+the same question for a GetFEM reference (postproc/getfem_reference.py, getfem_coulomb.py) of a
+contact2d output, and keep_reference() asks it for --reuse and says why a reference is remade.
 
 Only the standard library is needed, and h5py (postproc/c2dh5.py) for reuse.
 """
@@ -48,6 +49,8 @@ class Result:
 
 
 def _fmt(value):
+    if isinstance(value, (list, tuple)):
+        return ", ".join(_fmt(v) for v in value)
     if isinstance(value, bool):
         return ".true." if value else ".false."
     if isinstance(value, str):
@@ -58,7 +61,8 @@ def _fmt(value):
 
 
 def _same_value(want, have):
-    if isinstance(want, (list, tuple)):
+    if isinstance(want, (list, tuple)) or isinstance(have, list):
+        want = want if isinstance(want, (list, tuple)) else [want]
         have = have if isinstance(have, list) else [have]
         return len(want) == len(have) and all(_same_value(a, b) for a, b in zip(want, have))
     if isinstance(want, bool) or isinstance(have, bool):
@@ -109,7 +113,11 @@ def reuse_problem(output, deck, sets=None, method="explicit", statuses=None):
         group, _, var = key.partition(":")
         if group.lower() == "output":
             continue
-        g = eff.get(group.lower())
+        name, _, index = group.lower().partition("#")
+        g = eff.get(name)
+        if isinstance(g, list):        # dirichlet#2, traction (the index may be left out for one)
+            i = int(index or 1) - 1
+            g = g[i] if 0 <= i < len(g) else None
         have = g.get(var.lower()) if isinstance(g, dict) else None
         if have is None or not _same_value(want, have):
             return f"{key} = {have if have is not None else '?'}, not {_fmt(want)}"
@@ -134,6 +142,17 @@ def reference_problem(ref, source, program="getfem_reference", **want):
         if attrs.get(key) != str(value):
             return f"{key} '{attrs.get(key, '?')}', not '{value}'"
     return None
+
+
+def keep_reference(ref, source, reuse, program="getfem_reference", **want):
+    """With reuse, True when reference_problem() accepts ref; otherwise False (ref is to be made),
+    with one line saying why when ref exists."""
+    if not reuse:
+        return False
+    why = reference_problem(ref, source, program, **want)
+    if why is not None and Path(ref).exists():
+        print(f"recomputing {ref}: {why}", flush=True)
+    return why is None
 
 
 def run(exe, deck, output, sets=None, threads=None, reuse=False, timeout=None, static=False):

@@ -19,7 +19,10 @@ status changes summed over the run (chatter), and the end state against GetFEM.
 
 Prints every figure; writes coulomb_path.csv, coulomb_large_mu.csv and coulomb_path.png in --out.
 Those already there are refused before any run (one line, exit 2) unless --force; each is written
-beside its name and moved into place (postproc/outfile.py).
+beside its name and moved into place (postproc/outfile.py). --reuse keeps a run only when it is a
+finished run of the same deck and settings (c2drun.reuse_problem), and a GetFEM reference only when
+it is a complete, converged getfem_coulomb.py file of the same run's problem (effective deck) with
+the same increments (c2drun.reference_problem); any other is redone, one line says why.
 """
 import argparse
 import csv
@@ -31,51 +34,47 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2drun import ROOT, find_exe, out_dir  # noqa: E402
+from c2drun import ROOT, find_exe, keep_reference, out_dir, run  # noqa: E402
 from compare import compare  # noqa: E402
 from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
 
 HERE = Path(__file__).resolve().parent
 STROKES = {"sliding": 5.0e-3, "partial": 4.0e-4}
+INCREMENTS = 20     # getfem_coulomb.py --increments: load steps per interval of the reference
 
 
 def path_sets(path, stroke, f, level, mu=None):
-    """--set values (strings) of one run."""
+    """--set values of one run (c2drun.run)."""
     t1, t2 = 2.0e-6 * f, 6.0e-6 * f
-    sets = {"mesh:level": f"{level}", "solver:tol_residual": "1e-11", "output:xdmf": ".false.",
-            "solver:t_end": f"{10 * t2!r}"}
+    sets = {"mesh:level": level, "solver:tol_residual": 1e-11, "output:xdmf": False, "solver:t_end": 10 * t2}
     if path == "staged":
-        sets.update({"dirichlet#1:times": f"{t1!r}", "dirichlet#2:values": f"0, {stroke!r}",
-                     "dirichlet#2:times": f"{t1!r}, {t2!r}"})
+        sets.update({"dirichlet#1:times": [t1], "dirichlet#2:values": [0.0, stroke], "dirichlet#2:times": [t1, t2]})
     else:
         # proportional: both curves in two equal stages (a namelist override cannot shorten the
         # deck's two-entry u_x curve to one entry), so u_x/u_y is the same at every time
-        sets.update({"dirichlet#1:values": "-5e-4, -1e-3", "dirichlet#1:times": f"{t2 / 2!r}, {t2!r}",
-                     "dirichlet#2:values": f"{stroke / 2!r}, {stroke!r}", "dirichlet#2:times": f"{t2 / 2!r}, {t2!r}"})
+        sets.update({"dirichlet#1:values": [-5e-4, -1e-3], "dirichlet#1:times": [t2 / 2, t2],
+                     "dirichlet#2:values": [stroke / 2, stroke], "dirichlet#2:times": [t2 / 2, t2]})
     if mu is not None:
-        sets["contact:friction_coefficient"] = f"{mu!r}"
+        sets["contact:friction_coefficient"] = mu
     return sets
 
 
 def contact2d(exe, mult, sets, h5, reuse):
-    if reuse and Path(h5).is_file():
-        return 0
-    args = [exe, str(ROOT / "inputs" / f"coulomb_sliding_{mult.lower()}.nml"), "-q", "-o", str(h5), "--force"]
-    for k, v in sets.items():
-        args += ["--set", f"{k}={v}"]
-    proc = subprocess.run(args, capture_output=True, text=True, env={"OMP_NUM_THREADS": "1", "PATH": "/usr/bin:/bin"})
-    if proc.returncode != 0:
-        sys.exit(f"contact2d failed ({' '.join(args)}): {proc.stderr.strip()}")
-    return proc.returncode
+    """One run on one thread; with reuse, an existing h5 is kept only when c2drun.reuse_problem
+    finds it is this run, finished."""
+    res = run(exe, ROOT / "inputs" / f"coulomb_sliding_{mult.lower()}.nml", h5, sets, threads=1, reuse=reuse)
+    if res.returncode != 0:
+        sys.exit(f"contact2d failed ({h5}): {res.stderr.strip()}")
+    return res.returncode
 
 
 def getfem(h5, ref, reuse):
-    if reuse and Path(ref).is_file():
-        with h5py.File(ref, "r") as f:
-            if int(f.attrs.get("converged", 0)) == 1:
-                return 0
-    proc = subprocess.run([sys.executable, str(HERE / "getfem_coulomb.py"), str(h5), "-o", str(ref), "--force"],
-                          capture_output=True, text=True)
+    """The GetFEM Coulomb reference of the run h5; with reuse, an existing ref is kept only when it is
+    a complete, converged one of h5's problem with this study's increments (c2drun.keep_reference)."""
+    if keep_reference(ref, h5, reuse, program="getfem_coulomb", friction="coulomb", increments=INCREMENTS):
+        return 0
+    proc = subprocess.run([sys.executable, str(HERE / "getfem_coulomb.py"), str(h5), "-o", str(ref), "--force",
+                           "--increments", str(INCREMENTS)], capture_output=True, text=True)
     return proc.returncode
 
 
@@ -95,7 +94,9 @@ def main():
     ap.add_argument("--out", default="study/coulomb")
     ap.add_argument("--level", type=int, default=1)
     ap.add_argument("--factors", default="1,2,4,8,16,32")
-    ap.add_argument("--reuse", action="store_true", help="keep the runs and GetFEM references already in --out")
+    ap.add_argument("--reuse", action="store_true",
+                    help="keep the runs already in --out that finished with the same deck and settings, and the "
+                         "GetFEM references that are complete and converged for the same run's problem")
     ap.add_argument("--force", action="store_true",
                     help="replace the CSVs and PNG already in --out (refused otherwise, before any run)")
     args = ap.parse_args()

@@ -24,7 +24,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, levels_or_exit, out_dir, reference_problem, run  # noqa: E402
+from c2drun import ROOT, find_exe, keep_reference, levels_or_exit, out_dir, run  # noqa: E402
 from compare import compare  # noqa: E402
 from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
 
@@ -90,10 +90,7 @@ def main():
             if not args.no_getfem:
                 src = out / f"{m}_k{k}_t{RAMPS[1]:.1e}_tol{TOLS[-1]:.0e}.h5"
                 gf = out / f"getfem_{m}_k{k}.h5"
-                why = reference_problem(gf, src, friction="tresca") if args.reuse else "no --reuse"
-                if why is not None:
-                    if args.reuse and gf.exists():
-                        print(f"recomputing {gf}: {why}", flush=True)
+                if not keep_reference(gf, src, args.reuse, friction="tresca"):
                     proc = subprocess.run(["/usr/bin/python3", str(ROOT / "postproc" / "getfem_reference.py"), str(src),
                                            "-o", str(gf), "--force", "--friction", "tresca"], capture_output=True, text=True)
                     if proc.returncode != 0:

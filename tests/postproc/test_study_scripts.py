@@ -196,6 +196,40 @@ class Reuse(Base):
         self.assertEqual(self.attrs(gf0)[0]["status"], "converged")
 
 
+    def test_coulomb_path_study_reuses_only_the_same_problem(self):
+        import contextlib
+        import io
+        import coulomb_path_study as cps
+        h5, ref = self.path("run.h5"), self.path("ref.h5")
+        sliding, partial = (cps.path_sets("staged", cps.STROKES[s], 1, 0) for s in ("sliding", "partial"))
+        cps.contact2d(EXE, "P1", sliding, h5, False)
+        self.assertEqual(cps.getfem(h5, ref, False), 0)
+        said = io.StringIO()
+        with contextlib.redirect_stdout(said):
+            # the partial-slip stroke under the sliding run's name: the old code kept the sliding run
+            cps.contact2d(EXE, "P1", partial, h5, True)
+            self.assertEqual(self.attrs(h5)[1]["dirichlet"][1]["values"], [0.0, 4e-4])
+            kept = digest(h5)
+            cps.contact2d(EXE, "P1", partial, h5, True)      # the same run: kept
+            self.assertEqual(digest(h5), kept)
+            # the sliding run's reference: the old code kept any converged file
+            self.assertEqual(cps.getfem(h5, ref, True), 0)
+            self.assertEqual(self.attrs(ref)[0]["effective_deck"], self.attrs(h5)[0]["effective_deck"])
+            kept = digest(ref)
+            self.assertEqual(cps.getfem(h5, ref, True), 0)   # the same problem: kept
+            self.assertEqual(digest(ref), kept)
+            # the same problem with other increments
+            subprocess.run([sys.executable, os.path.join(POSTPROC, "getfem_coulomb.py"), h5, "-o", ref, "--force",
+                            "--increments", "5"], check=True, capture_output=True)
+            self.assertEqual(cps.getfem(h5, ref, True), 0)
+            self.assertEqual(int(self.attrs(ref)[0]["increments"]), cps.INCREMENTS)
+        said = said.getvalue()
+        self.assertIn("rerunning %s: dirichlet#2:values" % h5, said)
+        self.assertIn("recomputing %s: made for another problem" % ref, said)
+        self.assertIn("recomputing %s: increments '5', not '20'" % ref, said)
+        self.assertEqual(len(said.splitlines()), 3, said)
+
+
 class PaperStudy(Base):
     def test_bad_levels(self):
         self.one_line(self.script("paper_study.py", "--levels", "0-x", "--out", self.path("o")), "refused: --levels")
