@@ -7,7 +7,7 @@ module contact2d_driver
    use contact2d_strings, only: str, fixed, sci
    use contact2d_cli, only: cli_t, cli_parse, usage
    use contact2d_deck, only: deck_t, deck_read, deck_blame
-   use contact2d_model, only: model_t, model_build
+   use contact2d_model, only: model_t, model_build, beside
    use contact2d_explicit, only: explicit_t
    use contact2d_output, only: output_t
    use contact2d_outpath, only: outpath_t
@@ -81,7 +81,9 @@ contains
       call deck_read(cli%deck, cli%sets, deck, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
       ! output names before any set-up (contact2d_outpath)
-      call opath%check(cli%output, cli%deck, cli%force, deck%output%xdmf, stat, errmsg)
+      dest = ''   ! (here: the mesh file, an input the output must not be)
+      if (len_trim(deck%mesh%file) > 0) dest = beside(cli%deck, trim(deck%mesh%file))
+      call opath%check(cli%output, cli%deck, dest, cli%force, deck%output%xdmf, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
       call memory_check(deck, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg//deck_blame(deck, errmsg))

@@ -17,7 +17,7 @@ module contact2d_model
    use contact2d_explicit, only: damping_none, damping_given, damping_auto
    implicit none
    private
-   public :: model_t, model_build
+   public :: model_t, model_build, beside
 
    !> Everything that does not change during a run.
    type :: model_t

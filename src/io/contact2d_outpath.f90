@@ -67,14 +67,15 @@ contains
    end function sidecar_name
 
    !> Check the output (and sidecar) names before any set-up. stat = 1 with one line on refusal.
-   subroutine outpath_check(this, target, deck_path, force, sidecar, stat, errmsg)
+   !> mesh_path: the deck's Gmsh mesh or geometry ('' for none), an input like the deck.
+   subroutine outpath_check(this, target, deck_path, mesh_path, force, sidecar, stat, errmsg)
       class(outpath_t), intent(inout) :: this
-      character(len=*), intent(in) :: target, deck_path
+      character(len=*), intent(in) :: target, deck_path, mesh_path
       logical, intent(in) :: force, sidecar
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      integer(c_long_long) :: ddev, dino, dsize
-      integer :: dkind, err, slash
+      integer(c_long_long) :: ddev(2), dino(2), dsize
+      integer :: dkind(2), err, slash
       character(len=:), allocatable :: dir, base, pid, refers
 
       stat = 1
@@ -98,8 +99,12 @@ contains
          errmsg = "output '"//target//"' names a directory, not a file"
          return
       end if
-      call sys_path_info(deck_path, dkind, ddev, dino, dsize, err)
-      if (err /= 0) dkind = kind_missing
+      ! the inputs an output must not be: the deck, the mesh (by device and inode)
+      call sys_path_info(deck_path, dkind(1), ddev(1), dino(1), dsize, err)
+      if (err /= 0) dkind(1) = kind_missing
+      dkind(2) = kind_missing
+      if (len(mesh_path) > 0) call sys_path_info(mesh_path, dkind(2), ddev(2), dino(2), dsize, err)
+      if (err /= 0) dkind(2) = kind_missing
       call check_one(target, 'output', errmsg)
       if (len(errmsg) > 0) return
       if (sidecar) then
@@ -161,8 +166,10 @@ contains
             msg = what//" '"//path//"' is a directory: "//sys_strerror(21)
          else if (kind /= kind_missing .and. kind /= kind_file) then
             msg = what//" '"//path//"' is a "//trim(kind_names(kind))//', not a regular file'
-         else if (kind == kind_file .and. dkind == kind_file .and. dev == ddev .and. ino == dino) then
+         else if (kind == kind_file .and. dkind(1) == kind_file .and. dev == ddev(1) .and. ino == dino(1)) then
             msg = what//" '"//path//"' is the deck '"//deck_path//"' itself; choose another name with -o"
+         else if (kind == kind_file .and. dkind(2) == kind_file .and. dev == ddev(2) .and. ino == dino(2)) then
+            msg = what//" '"//path//"' is the deck's mesh:file '"//mesh_path//"' itself; choose another name with -o"
          else if (kind == kind_file .and. .not. force) then
             msg = what//" '"//path//"' exists; use --force to overwrite it or -o to choose another"
          end if

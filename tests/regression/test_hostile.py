@@ -3,7 +3,7 @@ exactly one line on stderr, 'contact2d: error: ...', naming the bad item (the ca
 and leaves the run's folder exactly as it was (same names, kinds, sizes, contents, link
 targets): nothing created, nothing modified, not even a lock or temporary file.
 
-Classes: output names (the deck itself, also through hard and symbolic links; the sidecar;
+Classes: output names (the deck itself and its Gmsh mesh file, also through hard and symbolic links; the sidecar;
 directories, devices, FIFOs, dangling links, missing or non-folder parents, names too long,
 existing files and sidecars), deck files (directory, device, FIFO, oversized, missing), deck text
 (over-long lines, over-long string values, '&end', a group opened inside another, over-long
@@ -17,6 +17,7 @@ import hashlib
 import os
 import re
 import resource
+import shutil
 import subprocess
 import sys
 
@@ -69,6 +70,12 @@ def edit(base, old, new):
     return make
 
 
+def gmsh_deck(t, folder):
+    """The shipped Hertz cylinder deck and its geometry (mesh:file = 'hertz_cylinder.geo') as deck.nml."""
+    shutil.copy(t.deck("hertz_cylinder_p1.nml"), os.path.join(folder, "deck.nml"))
+    shutil.copy(t.deck("hertz_cylinder.geo"), os.path.join(folder, "hertz_cylinder.geo"))
+
+
 def nan_cases():
     """(name, base, --set, pattern): every real of every group, NaN, Inf or beyond 1e30."""
     rows = [
@@ -118,6 +125,12 @@ def cases():
         ("out_is_deck_symlink", "u", ["-o", "sym.h5", "--force"],
          lambda f: os.symlink("deck.nml", os.path.join(f, "sym.h5")), r"'sym\.h5' is the deck", {}),
         ("out_is_deck_via_dotdot", "u", ["-o", "../%s/deck.nml", "--force"], None, r"is the deck", {"dotdot": True}),
+        # the deck's Gmsh geometry is an input too (a new user's -o onto it replaced it with HDF5)
+        ("out_is_mesh_file", gmsh_deck, ["-o", "hertz_cylinder.geo", "--force", "--set", "output:xdmf=.false."],
+         None, r"'hertz_cylinder\.geo' is the deck's mesh:file 'hertz_cylinder\.geo' itself", {}),
+        ("out_is_mesh_file_symlink", gmsh_deck, ["-o", "mesh.h5", "--force"],
+         lambda f: os.symlink("hertz_cylinder.geo", os.path.join(f, "mesh.h5")),
+         r"'mesh\.h5' is the deck's mesh:file", {}),
         ("out_named_xmf", "u", ["-o", "result.xmf"], None, r"'result\.xmf' would be overwritten by its own XDMF", {}),
         ("sidecar_exists", "u", [], lambda f: write(f, "out.xmf", "mine\n"), r"sidecar 'out\.xmf' exists.*--force", {}),
         ("sidecar_is_deck", "u", ["-o", "run.h5", "--force"], None, r"sidecar 'run\.xmf' is the deck",
