@@ -54,7 +54,11 @@ def static_times(exe, deck, out, level):
 
 
 def blas_of(exe):
-    """The BLAS library the executable loads (from ldd), for the header line."""
+    """The BLAS library the executable loads (from ldd), for the header line. `contact2d` is a
+    launcher (src/app/contact2d_launch.f90): the solver beside it is what links BLAS."""
+    solver = os.path.join(os.path.dirname(exe), "contact2d-solver")
+    if os.path.exists(solver):
+        exe = solver
     try:
         text = subprocess.run(["ldd", exe], capture_output=True, text=True, timeout=30).stdout
     except (OSError, subprocess.SubprocessError):

@@ -132,7 +132,10 @@ def _grid(d):
     """Check that d's mesh is a structured rectangle grid (SPEC 8); return its lines (xs, ys)."""
     nx, ny, x = d["nx"], d["ny"], d["coordinates"]
     name = os.path.basename(d["path"])
-    if nx < 1 or ny < 1 or x.shape != ((nx + 1) * (ny + 1), 2):
+    if nx < 1 or ny < 1:
+        raise CompareError("%s: a Gmsh mesh (mesh:file); compare.py compares runs on the built-in "
+                           "rectangle's nested structured meshes only" % name)
+    if x.shape != ((nx + 1) * (ny + 1), 2):
         raise CompareError("%s: %d nodes do not form a structured %d x %d mesh"
                            % (name, x.shape[0], nx, ny))
     conn = d["connectivity"]

@@ -244,18 +244,6 @@ def kkt_incremental(c, coef, uc, uc_prev, fn, ft, umax):
     return float(max(viol))
 
 
-def check_prescribed(path, prob):
-    """Every dof with a non-zero reaction in the run (/final/reaction is 0 off the prescribed dofs)
-    is prescribed here: a --side that selects too few nodes is refused."""
-    with h5py.File(path, "r") as f:
-        reaction = f["final/reaction"][()]
-    missed = (reaction != 0) & prob["free"]
-    if missed.any():
-        nd, cp = np.argwhere(missed)[0]
-        raise gr.Refused("node %d dof %s has a reaction in the run but is free here (check --side)"
-                         % (nd + 1, "xy"[cp]))
-
-
 def main(argv=None):
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("input")
@@ -280,14 +268,9 @@ def main(argv=None):
         print("getfem_coulomb: refused: %s" % e, file=sys.stderr)
         return 2
     try:
-        sides = {}
-        for item in args.side:
-            name, _, side = item.partition("=")
-            if side not in gr.SIDES:
-                raise gr.Refused("--side %s: '%s' is not one of %s" % (item, side, ", ".join(gr.SIDES)))
-            sides[name] = side
-        prob = gr.read_problem(args.input, friction="frictionless", sides=sides, curved_plane=True)
-        check_prescribed(args.input, prob)
+        prob = gr.read_problem(args.input, friction="frictionless", sides=gr.parse_sides(args.side),
+                               curved_plane=True)
+        gr.check_prescribed(args.input, prob)
         c = prob["contact"]
         if c is None:
             raise gr.Refused("the run has no contact")

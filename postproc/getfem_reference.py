@@ -113,7 +113,31 @@ def side_of(group, sides=None):
     name = str(group.get("boundary", ""))
     if sides and name in sides:
         return sides[name]
-    raise Refused("boundary = '%s': a Gmsh boundary name; say which bounding-box side it is (sides)" % name)
+    raise Refused("boundary = '%s': a Gmsh boundary name; say which bounding-box side it is with "
+                  "--side %s=SIDE (SIDE one of %s)" % (name, name, ", ".join(SIDES)))
+
+
+def parse_sides(items):
+    """--side NAME=SIDE values as {name: side}."""
+    sides = {}
+    for item in items:
+        name, _, side = item.partition("=")
+        if side not in SIDES:
+            raise Refused("--side %s: '%s' is not one of %s" % (item, side, ", ".join(SIDES)))
+        sides[name] = side
+    return sides
+
+
+def check_prescribed(path, prob):
+    """Every dof with a non-zero reaction in the run (/final/reaction is 0 off the prescribed dofs)
+    is prescribed here: a --side that selects too few nodes is refused."""
+    with h5py.File(path, "r") as f:
+        reaction = f["final/reaction"][()]
+    missed = (reaction != 0) & prob["free"]
+    if missed.any():
+        nd, cp = np.argwhere(missed)[0]
+        raise Refused("node %d dof %s has a reaction in the run but is free here (check --side)"
+                      % (nd + 1, "xy"[cp]))
 
 
 def g_edge(group):
@@ -743,6 +767,9 @@ def main(argv=None):
     p.add_argument("--r-tangential", type=float, default=1.0,
                    help="factor on the Tresca augmentation parameter (default 1: 0.01 E/h)")
     p.add_argument("--noisy", action="store_true", help="print every Newton iteration as it happens")
+    p.add_argument("--side", action="append", default=[], metavar="NAME=SIDE",
+                   help="a Gmsh mesh's &dirichlet / &traction boundary NAME is the bounding-box side SIDE "
+                        "(bottom, right, top, left); checked against the run's reactions")
     args = p.parse_args(argv)
     try:
         check_target(args.output, inputs=(args.input,), force=args.force)
@@ -750,7 +777,8 @@ def main(argv=None):
         print("getfem_reference: refused: %s" % e, file=sys.stderr)
         return 2
     try:
-        prob = read_problem(args.input, args.multiplier, args.friction)
+        prob = read_problem(args.input, args.multiplier, args.friction, sides=parse_sides(args.side))
+        check_prescribed(args.input, prob)
     except Refused as e:
         print("getfem_reference: refused: %s: %s" % (args.input, e), file=sys.stderr)
         return 2

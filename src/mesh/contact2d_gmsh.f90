@@ -409,7 +409,8 @@ contains
       end do
       call gmshFree(p_types)
       if (n_types == 0) then
-         errmsg = "mesh:file = '"//path//"' holds no 2D element (is there a Plane Surface, and was it meshed?)"
+         errmsg = "mesh:file = '"//path//"' holds no 2D element (is there a Plane Surface, and was it meshed? "// &
+                  "A .msh saved from a .geo with physical groups holds only their elements: add a Physical Surface)"
          return
       end if
 

@@ -12,6 +12,7 @@ mesh:file and refined by contact2d (straight edges: the same nodes), gives the .
 import os
 import shutil
 import subprocess
+import sys
 
 import numpy as np
 
@@ -33,7 +34,7 @@ def body(t):
                               nodes=f["contact/nodes"][()] - 1, s=f["contact/abscissa"][()],
                               p=f["final/contact/pressure"][()], status=f["final/contact/status"][()],
                               normal=f["contact/normal"][()], steps=int(f.attrs["steps"]),
-                              conv=int(f.attrs["converged"]))
+                              conv=int(f.attrs["converged"]), h5=run.h5)
     g, b = runs["gmsh"], runs["builtin"]
     t.check_equal("gmsh", "node count", len(b["x"]), len(g["x"]))
     # match nodes by coordinates (rounded to 1e-9 mm, far below the element size 0.025 mm)
@@ -55,6 +56,8 @@ def body(t):
     t.check_close("gmsh", "contact pressure (relative to max |p|)", b["p"], g["p"], atol=1e-12 * pmax,
                   reason="as the displacement")
     t.check_equal("gmsh", "status", b["status"].tolist(), g["status"].tolist())
+
+    check_getfem_sides(t, runs, perm, mult)
 
     # MSH files of every version Gmsh writes are read through the same library
     gmsh = shutil.which("gmsh")
@@ -95,6 +98,39 @@ def body(t):
                           atol=0.0, reason="the same numbers, copied")
             t.check_equal(run, "msh22: connectivity = the file's quads (as node sets, in file order)",
                           [sorted(rank[n] for n in q) for q in quads], [sorted(c) for c in conn.tolist()])
+
+
+def check_getfem_sides(t, runs, perm, mult):
+    """The GetFEM reference of the Gmsh run: its named boundaries need --side (refused without, one
+    line naming the option); with it, the same static problem as the built-in run's, so the same
+    GetFEM solution node for node (both Newton solutions to KKT 1e-12: 1e-9 of max |u| is ample)."""
+    try:
+        import getfem  # noqa: F401
+    except ImportError:
+        print("SKIP getfem_reference --side: python3-getfem is missing")
+        return
+    script = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, "postproc",
+                          "getfem_reference.py")
+    refs = {}
+    for kind, extra in (("nosides", []), ("gmsh", ["--side", "top=top", "--side", "right=right"]),
+                        ("builtin", [])):
+        h5 = runs["builtin" if kind == "builtin" else "gmsh"]["h5"]
+        ref = os.path.join(t.workdir, "getfem_%s_%s.h5" % (kind, mult))
+        cmd = [sys.executable, script, h5, "-o", ref, "--force"] + extra
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=600)
+        print("-- run  " + " ".join(cmd) + "\n" + proc.stdout + proc.stderr)
+        if kind == "nosides":
+            t.check_equal("getfem --side", "a Gmsh deck without --side: exit 2", 2, proc.returncode)
+            t.check("getfem --side", "the refusal names --side", "--side top=SIDE" in proc.stderr,
+                    "--side top=SIDE", proc.stderr.strip())
+            continue
+        t.require(proc.returncode == 0, "getfem_reference.py failed: " + proc.stderr[-1500:])
+        with c2dtest.h5py.File(ref, "r") as f:
+            refs[kind] = f["final/displacement"][()]
+    umax = float(np.max(np.abs(refs["builtin"])))
+    t.check_close("getfem --side", "GetFEM on the Gmsh run = GetFEM on the built-in run (node for node)",
+                  refs["builtin"][perm], refs["gmsh"], atol=1e-9 * umax,
+                  reason="the same discrete problem; Newton to a KKT violation of 1e-12")
 
 
 def read_msh22(path):
