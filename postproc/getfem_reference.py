@@ -778,7 +778,8 @@ def main(argv=None):
         return 2
     try:
         prob = read_problem(args.input, args.multiplier, args.friction, sides=parse_sides(args.side))
-        check_prescribed(args.input, prob)
+        if args.side:
+            check_prescribed(args.input, prob)   # the sides the user named select the run's supports
     except Refused as e:
         print("getfem_reference: refused: %s: %s" % (args.input, e), file=sys.stderr)
         return 2
