@@ -8,7 +8,8 @@
 !> names the deck line of the group and the runtime's message.
 !>
 !> Nothing is misread (issue 9): lines are read whole and refused beyond line_len, '&end' and
-!> nested groups are refused, only regular files up to max_deck_bytes are read. To add a
+!> nested groups are refused, a variable given twice in one group is refused, only regular files
+!> up to max_deck_bytes are read. To add a
 !> variable: a string is read into a local of length line_len and checked with too_long()
 !> against its field's length; a real is added to any_not_finite() in validate() (it uses
 !> check_finite of contact2d_checks, which must run before any comparison of the value), then
@@ -36,6 +37,8 @@ module contact2d_deck
    integer, parameter :: line_len = 1024
    !> Largest accepted deck file [bytes].
    integer, parameter :: max_deck_bytes = 1048576
+   !> Blank characters of a deck line: space and tab.
+   character(len=*), parameter :: blanks = ' '//achar(9)
 
    character(len=9), parameter :: group_names(8) = [character(len=9) :: &
                                                     'mesh', 'material', 'dirichlet', 'traction', 'contact', 'solver', 'output', &
@@ -383,6 +386,7 @@ contains
 
    !> Find the groups: '&name' opens one (first non-blank of a line), the first '/' outside
    !> quotes and comments closes it. Anything else outside groups must be blank or a comment.
+   !> A variable given twice in one group is refused (check_repeats).
    subroutine split_blocks(lines, blocks, stat, errmsg)
       character(len=line_len), intent(in) :: lines(:)
       type(block_t), allocatable, intent(out) :: blocks(:)
@@ -390,7 +394,7 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       type(block_t) :: tmp(size(lines))
       logical :: inside
-      character(len=1) :: quote, c
+      character(len=line_len) :: code
       integer :: i, k, n, j, first
       character(len=:), allocatable :: name
 
@@ -399,24 +403,22 @@ contains
       n = 0
       inside = .false.
       do i = 1, size(lines)
-         quote = ' '
+         code = syntax_only(lines(i))
          k = 1
          if (.not. inside) then
-            first = verify(lines(i), ' '//achar(9))
-            if (first == 0) cycle
-            if (lines(i)(first:first) == '!') cycle
-            if (lines(i)(first:first) /= '&') then
+            first = verify(code, blanks)
+            if (first == 0) cycle   ! blank or a comment
+            if (code(first:first) /= '&') then
                stat = 1
                errmsg = str(i)//': text outside any namelist group: '//trim(adjustl(lines(i)))
                return
             end if
             j = first + 1
-            do while (j <= len_trim(lines(i)))
-               c = lines(i)(j:j)
-               if (.not. (is_name_char(c))) exit
+            do while (j <= len_trim(code))
+               if (.not. is_name_char(code(j:j))) exit
                j = j + 1
             end do
-            name = lower(lines(i)(first + 1:j - 1))
+            name = lower(code(first + 1:j - 1))
             if (.not. any(group_names == name)) then
                stat = 1
                errmsg = str(i)//": unknown group '&"//name//"'; valid groups: "// &
@@ -430,42 +432,30 @@ contains
             k = j
          end if
          ! look for the closing slash
-         do j = k, len_trim(lines(i))
-            c = lines(i)(j:j)
-            if (quote /= ' ') then
-               if (c == quote) quote = ' '
-            else if (c == "'" .or. c == '"') then
-               quote = c
-            else if (c == '!') then
-               exit
-            else if (c == '&') then
-               ! '&end' (a common extension) or a new group before '/': refused, never misread
-               stat = 1
-               if (lower(lines(i)(j:min(j + 3, len(lines(i))))) == '&end') then
-                  errmsg = str(i)//": '&end' does not close a group here; close &"//trim(tmp(n)%name)// &
-                           " with '/'"
-               else
-                  errmsg = str(i)//": '&' inside group &"//trim(tmp(n)%name)//' (opened at line '// &
-                           str(tmp(n)%first)//") before its closing '/'"
-               end if
-               return
-            else if (c == '/') then
-               inside = .false.
-               tmp(n)%last = i
-               exit
+         j = k - 1 + scan(code(k:), '&/')
+         if (j < k) cycle
+         if (code(j:j) == '&') then
+            ! '&end' (a common extension) or a new group before '/': refused, never misread
+            stat = 1
+            if (lower(code(j:min(j + 3, len(code)))) == '&end') then
+               errmsg = str(i)//": '&end' does not close a group here; close &"//trim(tmp(n)%name)// &
+                        " with '/'"
+            else
+               errmsg = str(i)//": '&' inside group &"//trim(tmp(n)%name)//' (opened at line '// &
+                        str(tmp(n)%first)//") before its closing '/'"
             end if
-         end do
-         if (.not. inside) then
-            ! nothing but a comment may follow the slash
-            first = verify(lines(i)(j + 1:), ' '//achar(9))
-            if (first > 0) then
-               if (lines(i)(j + first:j + first) /= '!') then
-                  stat = 1
-                  errmsg = str(i)//': text after the end of group &'//trim(tmp(n)%name)
-                  return
-               end if
-            end if
+            return
          end if
+         inside = .false.
+         tmp(n)%last = i
+         ! nothing but a comment may follow the slash
+         if (verify(code(j + 1:), blanks) > 0) then
+            stat = 1
+            errmsg = str(i)//': text after the end of group &'//trim(tmp(n)%name)
+            return
+         end if
+         call check_repeats(lines(tmp(n)%first:i), tmp(n), stat, errmsg)
+         if (stat /= 0) return
       end do
       if (inside) then
          stat = 1
@@ -484,12 +474,151 @@ contains
             end if
          end do
       end do
-   contains
-      pure logical function is_name_char(ch)
-         character(len=1), intent(in) :: ch
-         is_name_char = verify(ch, 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_') == 0
-      end function is_name_char
    end subroutine split_blocks
+
+   !> A variable given twice in one group occurrence is refused: the namelist would silently
+   !> keep the last value. Elements of an array are distinct variables (values(1) = a,
+   !> values(2) = b), but an element of an array given whole is given twice (values = a, b,
+   !> values(2) = c). Only assignments whose name, subscript and '=' are on one line are seen.
+   subroutine check_repeats(blk, grp, stat, errmsg)
+      character(len=line_len), intent(in) :: blk(:)
+      type(block_t), intent(in) :: grp
+      integer, intent(inout) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      character(len=line_len), allocatable :: seen(:), here(:)
+      integer, allocatable :: seen_line(:)
+      integer :: l, i, j
+      allocate (seen(0), seen_line(0))
+      do l = 1, size(blk)
+         here = assigned_names(syntax_only(blk(l)))
+         do i = 1, size(here)
+            do j = 1, size(seen)
+               if (base_name(here(i)) /= base_name(seen(j))) cycle
+               if (here(i) /= seen(j) .and. index(here(i), '(') > 0 .and. index(seen(j), '(') > 0) cycle
+               stat = 1
+               errmsg = str(grp%first + l - 1)//': &'//trim(grp%name)//': '//trim(here(i))// &
+                        ' is given twice in this group (first'
+               if (here(i) /= seen(j)) errmsg = errmsg//' as '//trim(seen(j))
+               errmsg = errmsg//' at line '//str(grp%first + seen_line(j) - 1)//')'
+               return
+            end do
+            seen = [character(len=line_len) :: seen, here(i)]
+            seen_line = [seen_line, l]
+         end do
+      end do
+   contains
+      pure function base_name(designator) result(b)
+         character(len=*), intent(in) :: designator
+         character(len=:), allocatable :: b
+         b = designator(1:scan(designator // '(', '(') - 1)
+      end function base_name
+   end subroutine check_repeats
+
+   !> The variables a line of namelist syntax (from syntax_only) assigns: each 'name =' or
+   !> 'name(subscript) =', in lower case without blanks, e.g. 'young', 'values(2)'.
+   function assigned_names(code) result(names)
+      character(len=*), intent(in) :: code
+      character(len=line_len), allocatable :: names(:)
+      integer :: pos, k, close
+      character(len=:), allocatable :: designator
+      allocate (names(0))
+      pos = 1
+      do while (pos <= len(code))
+         ! a name starts with a letter after a blank or comma (not after '&': a group name)
+         if (.not. is_letter(code(pos:pos))) then
+            pos = pos + 1
+            cycle
+         end if
+         if (pos > 1) then
+            if (scan(code(pos - 1:pos - 1), blanks//',') == 0) then
+               pos = pos + 1
+               cycle
+            end if
+         end if
+         k = pos
+         do while (k <= len(code))
+            if (.not. is_name_char(code(k:k))) exit
+            k = k + 1
+         end do
+         designator = lower(code(pos:k - 1))
+         pos = k
+         k = next_nonblank(code, k)
+         if (k <= len(code)) then
+            if (code(k:k) == '(') then
+               close = index(code(k:), ')')
+               if (close == 0) cycle
+               designator = designator//without_blanks(code(k:k + close - 1))
+               k = next_nonblank(code, k + close)
+            end if
+         end if
+         if (k > len(code)) cycle
+         if (code(k:k) == '=') names = [character(len=line_len) :: names, designator]
+      end do
+   contains
+      pure integer function next_nonblank(s, from)
+         character(len=*), intent(in) :: s
+         integer, intent(in) :: from
+         next_nonblank = len(s) + 1
+         if (from > len(s)) return
+         next_nonblank = verify(s(from:), blanks)
+         if (next_nonblank == 0) then
+            next_nonblank = len(s) + 1
+         else
+            next_nonblank = from + next_nonblank - 1
+         end if
+      end function next_nonblank
+      pure function without_blanks(s) result(t)
+         character(len=*), intent(in) :: s
+         character(len=:), allocatable :: t
+         integer :: m
+         t = ''
+         do m = 1, len(s)
+            if (scan(s(m:m), blanks) == 0) t = t//s(m:m)
+         end do
+      end function without_blanks
+   end function assigned_names
+
+   !> A line with the text inside quotes and a '!' comment outside quotes blanked, so that the
+   !> names, '=', '&' and '/' left in it are namelist syntax (the quote characters are kept).
+   !> open_at: position of a quote left open at the end of the line, 0 if none.
+   function syntax_only(line, open_at) result(code)
+      character(len=*), intent(in) :: line
+      integer, intent(out), optional :: open_at
+      character(len=len(line)) :: code
+      character(len=1) :: quote, c
+      integer :: j, opened
+      code = line
+      quote = ' '
+      opened = 0
+      do j = 1, len(line)
+         c = line(j:j)
+         if (quote /= ' ') then
+            if (c == quote) then
+               quote = ' '
+               opened = 0
+            else
+               code(j:j) = ' '
+            end if
+         else if (c == "'" .or. c == '"') then
+            quote = c
+            opened = j
+         else if (c == '!') then
+            code(j:) = ' '
+            exit
+         end if
+      end do
+      if (present(open_at)) open_at = opened
+   end function syntax_only
+
+   pure logical function is_name_char(ch)
+      character(len=1), intent(in) :: ch
+      is_name_char = is_letter(ch) .or. verify(ch, '0123456789_') == 0
+   end function is_name_char
+
+   pure logical function is_letter(ch)
+      character(len=1), intent(in) :: ch
+      is_letter = verify(ch, 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ') == 0
+   end function is_letter
 
    !> Parse 'group[#i]:assignment' strings.
    subroutine parse_overrides(specs, blocks, ovr, stat, errmsg)

@@ -86,6 +86,11 @@ CASES = [
      r"group &solver is not closed by '/'"),
     ("text_outside_groups", "bad_decks/text_outside_groups.nml", [],
      r":5: text outside any namelist group"),
+    # a variable given twice in one group: the namelist would keep the last value silently
+    ("repeated_variable", "bad_decks/repeated_variable.nml", [],
+     r"repeated_variable\.nml:7: &material: young is given twice in this group \(first at line 6\)$"),
+    ("repeated_element", "bad_decks/repeated_element.nml", [],
+     r":12: &dirichlet: values\(2\) is given twice in this group \(first as values at line 11\)$"),
     # a real that is not finite or beyond 1e30, a string longer than its variable, half a point
     ("friction_coefficient_nan", "inputs/coulomb_sliding_p1.nml", ["--set", "contact:friction_coefficient=NaN"],
      r"contact:friction_coefficient = NaN must be finite"),
