@@ -297,13 +297,15 @@ contains
 
    !> The deck's lines, read in full: a line longer than line_len is refused with its number
    !> (never cut). Only a regular file of at most max_deck_bytes is read (a directory, device,
-   !> FIFO or oversized file is refused before reading).
+   !> FIFO or oversized file is refused before reading). A leading UTF-8 byte-order mark is
+   !> skipped.
    subroutine read_lines(path, lines, text, stat, errmsg)
       character(len=*), intent(in) :: path
       character(len=line_len), allocatable, intent(out) :: lines(:)
       character(len=:), allocatable, intent(out) :: text
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
+      character(len=*), parameter :: bom = char(239)//char(187)//char(191)
       character(len=256) :: msg, chunk
       character(len=line_len), allocatable :: tmp(:)
       character(len=:), allocatable :: buf, line
@@ -352,6 +354,11 @@ contains
             if (ios /= 0) exit
          end do
          if (is_iostat_end(ios) .and. total == 0) exit
+         if (n == 0 .and. index(line, bom) == 1) then
+            ! a UTF-8 byte-order mark (some editors write one) is not part of the first line
+            line = line(len(bom) + 1:)
+            last_nonblank = max(last_nonblank - len(bom), 0)
+         end if
          if (ios /= 0 .and. .not. is_iostat_eor(ios) .and. .not. is_iostat_end(ios)) then
             errmsg = path//':'//str(n + 1)//': cannot read: '//trim(msg)
             close (unit)

@@ -91,6 +91,9 @@ CASES = [
      r"repeated_variable\.nml:7: &material: young is given twice in this group \(first at line 6\)$"),
     ("repeated_element", "bad_decks/repeated_element.nml", [],
      r":12: &dirichlet: values\(2\) is given twice in this group \(first as values at line 11\)$"),
+    # a leading UTF-8 byte-order mark is skipped: the error is the deck's real one
+    ("bom_young_zero", "bad_decks/bom_young_zero.nml", [],
+     r"bom_young_zero\.nml: material:young = .* must be > 0$"),
     # a real that is not finite or beyond 1e30, a string longer than its variable, half a point
     ("friction_coefficient_nan", "inputs/coulomb_sliding_p1.nml", ["--set", "contact:friction_coefficient=NaN"],
      r"contact:friction_coefficient = NaN must be finite"),
@@ -131,7 +134,7 @@ def body(t):
         print("## case %s" % name)
         path = deck_path(t, deck)
         if deck.startswith("bad_decks/"):
-            with open(path) as fh:
+            with open(path, encoding="utf-8-sig") as fh:
                 print("   deck: %s   (%s)" % (deck, fh.readline().strip()))
         cwd = t.subdir(name)
         if name == "existing_output":
