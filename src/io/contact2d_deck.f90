@@ -767,7 +767,7 @@ contains
       k = index(msg, 'object name ')
       if (k == 0) return
       token = msg(k + len('object name '):)
-      e = scan(token, ' ,')
+      e = scan(token, ' ,;')
       if (e > 0) token = token(:e - 1)
       if (len(token) == 0) return
       do l = blk%first, blk%last
@@ -822,12 +822,16 @@ contains
       if (read_failed) then
          stat = 1
          errmsg = where//trim(msg)
-         ! an unquoted text value (--set contact:friction=coulomb) reads as a variable name
          k = index(msg, 'Cannot match namelist object name ')
-         if (index(where, '--set') == 1 .and. k > 0) then
-            name = lower(trim(msg(k + 34:)))
-            if (len(name) > 0 .and. index(lower(where(index(where, '=') + 1:)), name) > 0) &
-               errmsg = errmsg//'; a text value needs quotes, e.g. --set "contact:friction='//"'coulomb'"//'"'
+         if (k == 0) return
+         name = lower(trim(msg(k + 34:)))
+         if (len(name) == 0) return
+         if (.not. is_letter(name(1:1))) then
+            ! no name but a number: a value beyond the variable's size, often a decimal comma
+            errmsg = errmsg//'; more values than the variable holds (a decimal takes a point: 0.3, not 0,3)'
+         else if (index(where, '--set') == 1 .and. index(lower(where(index(where, '=') + 1:)), name) > 0) then
+            ! an unquoted text value (--set contact:friction=coulomb) reads as a variable name
+            errmsg = errmsg//'; a text value needs quotes, e.g. --set "contact:friction='//"'coulomb'"//'"'
          end if
       end if
    end function read_failed

@@ -61,6 +61,10 @@ CASES = [
      r"--set 'solver:dtfactor=0\.5'.*dtfactor$"),
     ("set_text_unquoted", "inputs/" + UNIAXIAL, ["--set", "solver:damping=given"],
      r"--set 'solver:damping=given'.*\bgiven; a text value needs quotes"),
+    # a decimal comma makes a second value, not a name: no hint about quotes
+    ("set_decimal_comma", "inputs/coulomb_sliding_p1.nml", ["--set", "contact:friction_coefficient=0,3"],
+     r"^(?!.*quotes)contact2d: error: --set 'contact:friction_coefficient=0,3': .*object name 3; "
+     r"more values than the variable holds \(a decimal takes a point: 0\.3, not 0,3\)$"),
     # a value refused by validation names the --set it came from, as well as the deck's group
     ("set_value_blamed", "inputs/" + UNIAXIAL, ["--set", "mesh:nx=3", "--set", "solver:tol_residual=-1"],
      r"solver:tol_residual = -1 must be > 0 \(from --set 'solver:tol_residual=-1'\)$"),
