@@ -664,6 +664,11 @@ contains
          end if
          ovr(i)%group = group
          ovr(i)%assignment = spec(colon + 1:)
+         errmsg = assignment_problem(ovr(i)%assignment)
+         if (len(errmsg) > 0) then
+            errmsg = "--set '"//spec//"': "//errmsg
+            return
+         end if
          if (group == 'dirichlet' .or. group == 'traction') then
             nocc = count(blocks%name == group)
             if (nocc == 0) then
@@ -688,6 +693,29 @@ contains
       stat = 0
       errmsg = ''
    end subroutine parse_overrides
+
+   !> What keeps the 'variable=value' of a --set from being one assignment, '' if nothing: a
+   !> quote left open, no value (the namelist would leave the variable as it is) or more than
+   !> one variable.
+   function assignment_problem(assignment) result(problem)
+      character(len=*), intent(in) :: assignment
+      character(len=:), allocatable :: problem
+      character(len=len(assignment)) :: code
+      character(len=line_len), allocatable :: names(:)
+      integer :: open_at
+      problem = ''
+      code = syntax_only(assignment, open_at)
+      if (open_at > 0) then
+         problem = 'the quote opening '//assignment(open_at:)//' is not closed'
+         return
+      end if
+      names = assigned_names(code)
+      if (size(names) > 1) then
+         problem = 'sets '//str(size(names))//' variables ('//join(names, ', ')//'); give one variable per --set'
+      else if (verify(code(index(code, '=') + 1:), blanks//',') == 0) then
+         problem = "no value after '='"
+      end if
+   end function assignment_problem
 
    !> Read every group (defaults first, then the deck block, then the overrides).
    subroutine read_groups(path, lines, blocks, ovr, deck, stat, errmsg)

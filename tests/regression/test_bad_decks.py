@@ -65,6 +65,14 @@ CASES = [
     ("set_decimal_comma", "inputs/coulomb_sliding_p1.nml", ["--set", "contact:friction_coefficient=0,3"],
      r"^(?!.*quotes)contact2d: error: --set 'contact:friction_coefficient=0,3': .*object name 3; "
      r"more values than the variable holds \(a decimal takes a point: 0\.3, not 0,3\)$"),
+    # a --set that would change nothing, set two variables, or leaves a quote open
+    ("set_value_empty", "inputs/" + UNIAXIAL, ["--set", "solver:dt_factor="],
+     r"--set 'solver:dt_factor=': no value after '='$"),
+    ("set_two_variables", "inputs/" + UNIAXIAL, ["--set", "material:young=2.1e5, poisson=0.25"],
+     r"--set 'material:young=2\.1e5, poisson=0\.25': sets 2 variables \('young', 'poisson'\); "
+     r"give one variable per --set$"),
+    ("set_quote_not_closed", "inputs/coulomb_sliding_p1.nml", ["--set", "contact:multiplier='P0"],
+     r"--set 'contact:multiplier='P0': the quote opening 'P0 is not closed$"),
     # a value refused by validation names the --set it came from, as well as the deck's group
     ("set_value_blamed", "inputs/" + UNIAXIAL, ["--set", "mesh:nx=3", "--set", "solver:tol_residual=-1"],
      r"solver:tol_residual = -1 must be > 0 \(from --set 'solver:tol_residual=-1'\)$"),
