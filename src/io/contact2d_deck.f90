@@ -669,12 +669,13 @@ contains
             errmsg = "--set '"//spec//"': "//errmsg
             return
          end if
+         nocc = count(blocks%name == group)
+         ! a --set changes a group of the deck; these groups are not there unless the deck says so
+         if (nocc == 0 .and. (group == 'dirichlet' .or. group == 'traction' .or. group == 'contact')) then
+            errmsg = "--set '"//spec//"': the deck has no &"//group//' group'
+            return
+         end if
          if (group == 'dirichlet' .or. group == 'traction') then
-            nocc = count(blocks%name == group)
-            if (nocc == 0) then
-               errmsg = "--set '"//spec//"': the deck has no &"//group//' group'
-               return
-            end if
             if (ovr(i)%index == 0 .and. nocc > 1) then
                errmsg = "--set '"//spec//"': the deck has "//str(nocc)//' &'//group// &
                         ' groups; say which, e.g. '//group//'#2:...'
@@ -746,11 +747,6 @@ contains
          case ('solver'); call read_solver(none, pick(ovr, 'solver', 1), where, deck%solver, stat, errmsg)
          case ('output'); call read_output(none, pick(ovr, 'output', 1), where, deck%output, stat, errmsg)
          case ('initial'); call read_initial(none, pick(ovr, 'initial', 1), where, deck%initial, stat, errmsg)
-         case ('contact')
-            if (any(ovr%group == 'contact')) then
-               stat = 1
-               errmsg = '--set on &contact, but the deck has no &contact group'
-            end if
          end select
          if (stat /= 0) return
       end do

@@ -92,8 +92,11 @@ CASES = [
     ("set_edge_empty", "inputs/" + UNIAXIAL, ["--set", "dirichlet#1:edge=''"],
      r"&dirichlet \(#1\): edge is empty: give edge = 'bottom' \| 'right' \| 'top' \| 'left'.*"
      r"\(from --set 'dirichlet#1:edge='''\)$"),
+    # the same words whichever optional group the deck lacks
     ("set_contact_without_group", "inputs/" + UNIAXIAL, ["--set", "contact:multiplier='P0'"],
-     r"&contact"),
+     r"--set 'contact:multiplier='P0'': the deck has no &contact group$"),
+    ("set_traction_without_group", "inputs/" + UNIAXIAL, ["--set", "traction:values=1"],
+     r"--set 'traction:values=1': the deck has no &traction group$"),
     ("group_not_closed", "bad_decks/group_not_closed.nml", [],
      r"group &solver is not closed by '/'"),
     ("text_outside_groups", "bad_decks/text_outside_groups.nml", [],
