@@ -228,8 +228,11 @@ contains
       snap_step = next_snapshot(deck, model%dt, isnap, 0_i8, 0.0_wp)
       associate (hist => int(deck%output%history_interval, i8), check => int(deck%solver%check_interval, i8))
          do while (.not. done)
+            ! the chunk ends at the next history sample, convergence check, snapshot, max_steps
+            ! or the step that reaches t_end, whichever comes first
             nstep = int(min(hist - mod(solver%step, hist), check - mod(solver%step, check), &
-                            int(deck%solver%max_steps, i8) - solver%step, snap_step - solver%step))
+                            int(deck%solver%max_steps, i8) - solver%step, snap_step - solver%step, &
+                            end_step(solver, deck%solver%t_end) - solver%step))
             call system_clock(tick)
             call solver%advance(model%stiff, model%load, model%contact, nstep)
             call system_clock(clock1)
@@ -279,6 +282,7 @@ contains
                      done = .true.
                   end if
                end if
+               ! (end_step cuts the chunks at the step this first holds)
                if (solver%time >= deck%solver%t_end*(1 - 1.0e-12_wp) .or. &
                    solver%step >= deck%solver%max_steps) done = .true.
             end if
@@ -363,6 +367,35 @@ contains
                    ' holds the history up to the failure'//kept_note(dest))
       end if
    end subroutine driver_main
+
+   !> The step at which the run reaches t_end: the first step after the current one whose time
+   !> t_k = time0 + (k - step0) dt (as the solver forms it) is >= t_end (1 - 1e-12), the test
+   !> that ends the run. The chunk of steps between two checks is cut there, so every run stops
+   !> at that step whatever its history and check intervals (docs/deck.md, solver:t_end).
+   integer(i8) function end_step(solver, t_end) result(step)
+      type(explicit_t), intent(in) :: solver
+      real(wp), intent(in) :: t_end
+      real(wp) :: limit, r
+      limit = t_end*(1 - 1.0e-12_wp)
+      r = (limit - solver%time0)/solver%dt
+      if (.not. r < 2.0_wp**60) then
+         step = huge(1_i8)
+         return
+      end if
+      step = max(solver%step + 1, solver%step0 + ceiling(r, i8))
+      ! the rounding of r: settle on the solver's own formula for t_k
+      do while (step > solver%step + 1 .and. at(step - 1) >= limit)
+         step = step - 1
+      end do
+      do while (at(step) < limit)
+         step = step + 1
+      end do
+   contains
+      real(wp) function at(k)
+         integer(i8), intent(in) :: k
+         at = solver%time0 + real(k - solver%step0, wp)*solver%dt
+      end function at
+   end function end_step
 
    !> Step of snapshot k (the first step at or after its time), or huge if there is none; the
    !> run is at step0, time0 and goes on with dt.

@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""How a run ends and what it says about it (a new user's review).
+
+- solver:t_end: a run without convergence stops at the first step n with t_n >= t_end (within a
+  relative 1e-12), the rule dynamic runs always followed with a history sample at every step:
+  t_end <= final time < t_end + dt, steps = that n, whatever the history and check intervals
+  (the chunk of steps between two checks is cut at t_end; the old code ran on to the next
+  check: 3900 steps instead of 3892 on the paper scene with check_interval = 50). A run cut at
+  every step (history_interval = check_interval = 1) must give bit for bit the same end state.
+"""
+import numpy as np
+
+import c2dtest
+
+PAPER = "baillet_sassi_2002_p1.nml"
+IMPACT = "impact_bar_p1.nml"
+
+
+def end_step(dt, t_end):
+    """The first n >= 1 with n dt >= t_end (1 - 1e-12), n dt formed as the solver forms t_n."""
+    limit = t_end * (1 - 1e-12)
+    n = 1
+    while n * dt < limit:
+        n += 1
+    return n
+
+
+def final(run):
+    with run.open() as f:
+        return {"steps": int(f.attrs["steps"]), "final_time": float(f.attrs["final_time"]),
+                "dt": float(f.attrs["dt"]), "status": c2dtest.attr_str(f.attrs["status"]),
+                "hist_time": float(f["history/time"][-1]), "hist_step": int(f["history/step"][-1]),
+                "u": f["final/displacement"][()], "v": f["final/velocity"][()]}
+
+
+def check_t_end(t, label, deck, t_end, args, status):
+    """A run to t_end with the given chunking against the same run cut at every step (the later
+    --set of a variable wins)."""
+    chunked = t.run(t.deck(deck), "--set", "solver:t_end=%r" % t_end, *args, name=label)
+    t.expect_exit(chunked, 0)
+    every = t.run(t.deck(deck), "--set", "solver:t_end=%r" % t_end, *args, "--set", "output:history_interval=1",
+                  "--set", "solver:check_interval=1", name=label + "_every_step")
+    t.expect_exit(every, 0)
+    a, b = final(chunked), final(every)
+    t.check_equal(chunked, "status (t_end reached)", status, a["status"])
+    n = end_step(a["dt"], t_end)
+    t.check_equal(chunked, "steps = first n with n dt >= t_end", n, a["steps"],
+                  reason="t_end = %r, dt = %r: t_end/dt = %.6f" % (t_end, a["dt"], t_end / a["dt"]))
+    t.check(chunked, "final_time in [t_end, t_end + dt)", t_end * (1 - 1e-12) <= a["final_time"] < t_end + a["dt"],
+            "[%r, %r)" % (t_end, t_end + a["dt"]), repr(a["final_time"]))
+    t.check_equal(chunked, "last history sample at the end (time)", a["final_time"], a["hist_time"])
+    t.check_equal(chunked, "last history sample at the end (step)", a["steps"], a["hist_step"])
+    t.check_equal(chunked, "steps = those of the run cut at every step", b["steps"], a["steps"])
+    t.check(chunked, "final displacement and velocity bit for bit those of the run cut at every step",
+            np.array_equal(a["u"], b["u"]) and np.array_equal(a["v"], b["v"]), True,
+            np.array_equal(a["u"], b["u"]) and np.array_equal(a["v"], b["v"]))
+
+
+def body(t):
+    # ---- 1. solver:t_end is not overshot ------------------------------------------------------
+    # quasi-static, not converged by t_end (the load ends at 2.5e-6 s, convergence at 5.06e-6 s)
+    check_t_end(t, "t_end_check50", PAPER, 3.1e-6, ["--set", "solver:check_interval=50"], "not converged")
+    # the history interval cuts the chunks too
+    check_t_end(t, "t_end_hist37", PAPER, 3.1e-6, ["--set", "output:history_interval=37"], "not converged")
+    # a t_end on a step (dt given: 6200 dt = 3.1e-6 up to rounding) is reached at that step
+    check_t_end(t, "t_end_on_a_step", PAPER, 3.1e-6, ["--set", "solver:dt=5e-10", "--set", "solver:check_interval=60",
+                                                              "--set", "output:history_interval=30"],
+                "not converged")
+    # a dynamic run (no convergence test) with a history sample every 10 steps
+    check_t_end(t, "t_end_dynamic", IMPACT, 6.0e-7, ["--set", "output:history_interval=10"], "dynamic")
+
+
+if __name__ == "__main__":
+    c2dtest.Test("run end: t_end").main(body)
