@@ -45,6 +45,7 @@ contains
       real(wp) :: scale_peak, strain_peak, scale_now
       logical :: converged, done, interactive, sampled
       real(wp), allocatable :: extra(:, :)
+      real(wp), allocatable :: snap_missed(:)
       real(wp) :: dt_initial
       type(thread_tuner_t) :: tuner
       integer(i8) :: fallback_step
@@ -322,6 +323,9 @@ contains
       end if
       call system_clock(clock1)
       wall = real(clock1 - clock0, wp)/rate
+      ! output:snapshot_times after the end of the run: said in the file and the summary
+      snap_missed = deck%output%snapshot_times(isnap:deck%output%nsnapshot)
+      if (size(snap_missed) > 0) call out%file%attr(out%file%id, 'snapshot_times_not_reached', snap_missed)
       call out%file%attr(out%file%id, 'dt_initial', dt_initial)
       call out%file%attr(out%file%id, 'dt_fallback_step', int(fallback_step))
       call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
@@ -333,7 +337,8 @@ contains
       call opath%publish(stat, errmsg, ended)
       if (stat /= 0) call fail(2, errmsg)
       keep_partial = dest /= opath%target   ! kept at its temporary name: fail() below must not remove it
-            call summary(model, deck, solver, dest, converged, status, residual, wall, timings, dt_initial, fallback_step)
+      call summary(model, deck, solver, dest, converged, status, residual, wall, timings, dt_initial, fallback_step, &
+                   snap_missed)
       if (tuner%active) write (output_unit, '(a)') ' threads             auto: '//str(tuner%nmax)//' on '// &
          fixed(100*real(tuner%steps(2), wp)/max(1.0_wp, real(sum(tuner%steps), wp)), 1)//' % of the steps, 1 on the rest ('// &
          'started on '//str(tuner%started)//', '//str(tuner%switches)//' switches; set OMP_NUM_THREADS to fix the count)'
@@ -544,7 +549,8 @@ contains
       end associate
    end subroutine contact_summary
 
-   subroutine summary(model, deck, solver, path, converged, status, residual, wall, timings, dt_initial, fallback_step)
+   subroutine summary(model, deck, solver, path, converged, status, residual, wall, timings, dt_initial, fallback_step, &
+                      snap_missed)
       type(model_t), intent(in) :: model
       type(deck_t), intent(in) :: deck
       type(explicit_t), intent(in) :: solver
@@ -552,8 +558,10 @@ contains
       logical, intent(in) :: converged
       real(wp), intent(in) :: residual, wall, timings(4), dt_initial
       integer(i8), intent(in) :: fallback_step
-      character(len=:), allocatable :: conv
+      real(wp), intent(in) :: snap_missed(:)   !< output:snapshot_times after the end [s]
+      character(len=:), allocatable :: conv, times
       real(wp) :: rate
+      integer :: k
       associate (c => model%contact)
          if (converged) then
             conv = 'yes (relative residual '//sci(residual)//' < '//sci(deck%solver%tol_residual)//')'
@@ -586,6 +594,15 @@ contains
             trim(merge('stops when converged or at t_end =', 'ends at t_end =                   ', deck%convergence_test))//' '// &
             sci(deck%solver%t_end)//' s; initial kinetic energy '//sci(solver%initial_kinetic)//' mJ'
          write (output_unit, '(a)') ' converged           '//conv
+         if (size(snap_missed) > 0) then
+            times = str(snap_missed(1))
+            do k = 2, size(snap_missed)
+               times = times//', '//str(snap_missed(k))
+            end do
+            write (output_unit, '(a)') ' snapshots           not reached: output:snapshot_times '//times// &
+               ' s (the run ended at t = '//sci(solver%time)//' s); '// &
+               str(deck%output%nsnapshot - size(snap_missed))//' of '//str(deck%output%nsnapshot)//' written'
+         end if
          write (output_unit, '(a)') ' energy balance      '//sci(solver%balance_error(c%friction_dissipation, c%normal_work))// &
             ' (relative error; W_ext = '//sci(solver%external_work)//' mJ)'
          if (c%active) call contact_summary(model, solver)

@@ -32,8 +32,8 @@ module contact2d_h5
       procedure :: ok => h5file_ok
       procedure :: group => h5file_group
       procedure :: close_group => h5file_close_group
-      procedure, private :: attr_real, attr_int, attr_str
-      generic :: attr => attr_real, attr_int, attr_str
+      procedure, private :: attr_real, attr_real1, attr_int, attr_str
+      generic :: attr => attr_real, attr_real1, attr_int, attr_str
       procedure, private :: dset_real1, dset_real2, dset_int1, dset_int2
       generic :: dataset => dset_real1, dset_real2, dset_int1, dset_int2
       procedure :: fail => h5file_fail
@@ -166,6 +166,25 @@ contains
       call h5aclose_f(at, hdferr); call this%fail(hdferr, 'attribute '//name)
       call h5sclose_f(sp, hdferr); call this%fail(hdferr, 'attribute '//name)
    end subroutine attr_real
+
+   !> A 1D real attribute (h5py reads it as an array).
+   subroutine attr_real1(this, loc, name, value)
+      class(h5file_t), intent(inout) :: this
+      integer(hid_t), intent(in) :: loc
+      character(len=*), intent(in) :: name
+      real(wp), intent(in) :: value(:)
+      integer(hsize_t) :: dims(1)
+      integer(hid_t) :: sp, at
+      integer :: hdferr
+      if (this%stat /= 0) return
+      dims = shape(value, kind=hsize_t)
+      call h5screate_simple_f(1, dims, sp, hdferr); call this%fail(hdferr, 'attribute '//name)
+      call drop_existing(this, loc, name)
+      call h5acreate_f(loc, name, H5T_NATIVE_DOUBLE, sp, at, hdferr); call this%fail(hdferr, 'attribute '//name)
+      call h5awrite_f(at, H5T_NATIVE_DOUBLE, value, dims, hdferr); call this%fail(hdferr, 'attribute '//name)
+      call h5aclose_f(at, hdferr); call this%fail(hdferr, 'attribute '//name)
+      call h5sclose_f(sp, hdferr); call this%fail(hdferr, 'attribute '//name)
+   end subroutine attr_real1
 
    subroutine attr_int(this, loc, name, value)
       class(h5file_t), intent(inout) :: this

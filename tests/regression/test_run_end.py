@@ -7,6 +7,10 @@
   (the chunk of steps between two checks is cut at t_end; the old code ran on to the next
   check: 3900 steps instead of 3892 on the paper scene with check_interval = 50). A run cut at
   every step (history_interval = check_interval = 1) must give bit for bit the same end state.
+- output:snapshot_times after the end of the run (the paper scene converges at 5.06e-6 s;
+  times 1e-6, 5e-5, 6e-5 s): one summary line names the times not reached and the root attribute
+  snapshot_times_not_reached lists them (the old code dropped them silently); a run that reaches
+  all its times has neither.
 """
 import numpy as np
 
@@ -69,6 +73,31 @@ def body(t):
     # a dynamic run (no convergence test) with a history sample every 10 steps
     check_t_end(t, "t_end_dynamic", IMPACT, 6.0e-7, ["--set", "output:history_interval=10"], "dynamic")
 
+    # ---- 2. snapshot times after the end of the run -------------------------------------------
+    run = t.run(t.deck(PAPER), "--set", "output:snapshot_times=1e-6,5e-5,6e-5", name="snapshots_missed")
+    t.expect_exit(run, 0)
+    lines = [l for l in run.stdout.splitlines() if l.strip().startswith("snapshots")]
+    t.check_equal(run, "summary lines about snapshots", 1, len(lines))
+    line = lines[0] if lines else ""
+    t.check(run, "the line names the times not reached", "not reached" in line and "5e-5, 6e-5 s" in line
+            and "1 of 3 written" in line, "not reached: ... 5e-5, 6e-5 s ...; 1 of 3 written", line)
+    with run.open() as f:
+        t.check_equal(run, "converged (before the last two times)", 1, int(f.attrs["converged"]))
+        t.check(run, "final_time between the first and the second time", 1e-6 <= float(f.attrs["final_time"]) < 5e-5,
+                "[1e-6, 5e-5)", float(f.attrs["final_time"]))
+        missed = f.attrs.get("snapshot_times_not_reached")
+        t.check(run, "root attribute snapshot_times_not_reached", missed is not None
+                and np.array_equal(np.asarray(missed, dtype=float), [5e-5, 6e-5]), [5e-5, 6e-5],
+                None if missed is None else list(missed))
+        t.check_equal(run, "snapshot groups", 1, len(f["fields"]))
+    run = t.run(t.deck(PAPER), "--set", "output:snapshot_times=1e-6,5e-6", name="snapshots_all")
+    t.expect_exit(run, 0)
+    t.check_equal(run, "no summary line about snapshots when all are written", [],
+                  [l for l in run.stdout.splitlines() if l.strip().startswith("snapshots")])
+    with run.open() as f:
+        t.check_equal(run, "no snapshot_times_not_reached attribute", False, "snapshot_times_not_reached" in f.attrs)
+        t.check_equal(run, "snapshot groups", 2, len(f["fields"]))
+
 
 if __name__ == "__main__":
-    c2dtest.Test("run end: t_end").main(body)
+    c2dtest.Test("run end: t_end, snapshot times not reached").main(body)
