@@ -6,7 +6,7 @@ module contact2d_driver
    use contact2d_version, only: program_name, program_version
    use contact2d_strings, only: str, fixed, sci
    use contact2d_cli, only: cli_t, cli_parse, usage
-   use contact2d_deck, only: deck_t, deck_read, deck_blame
+   use contact2d_deck, only: deck_t, deck_read, deck_blame, edge_load_cfg_t
    use contact2d_model, only: model_t, model_build, beside
    use contact2d_explicit, only: explicit_t
    use contact2d_output, only: output_t
@@ -24,6 +24,8 @@ module contact2d_driver
 
    !> Seconds between progress-line updates.
    real(wp), parameter :: progress_seconds = 0.5_wp
+   !> A load ramp covered by fewer steps than this is warned about (ramp_warning).
+   real(wp), parameter :: ramp_steps_min = 10
 
    !> This run's output names and lock: fail() releases them (docs/output.md, output safety).
    type(outpath_t), save :: opath
@@ -176,6 +178,9 @@ contains
             ' node(s) ('//sci(model%added_mass/model%body_mass)//' of the body mass) for a stable step of '// &
             sci(deck%solver%mass_scaling)//' s'
       end if
+
+      errmsg = ramp_warning(deck, model%dt)
+      if (len(errmsg) > 0) write (error_unit, '(a)') program_name//': warning: '//errmsg
 
       call solver%init(model%stiff, model%load, model%dt, model%damping, deck%solver%alpha, &
                        deck%solver%damping_interval)
@@ -494,6 +499,54 @@ contains
    end subroutine memory_check
 
 
+
+   !> A warning when the first stage that moves a load (a &dirichlet or &traction curve: its first
+   !> stage whose end value differs from the value before it) lasts fewer than ramp_steps_min
+   !> steps of dt, the shortest such stage named; '' otherwise. Typical of units that do not go
+   !> together (SI material values with lengths in mm make dt 1000 x too long): the load is then
+   !> applied in a few steps, and the run may end before anything happens. Curves that only hold
+   !> a value (the rollers of the impact decks) are not ramps.
+   function ramp_warning(deck, dt) result(msg)
+      type(deck_t), intent(in) :: deck
+      real(wp), intent(in) :: dt
+      character(len=:), allocatable :: msg, name
+      real(wp) :: shortest
+      integer :: i
+      msg = ''
+      name = ''
+      shortest = huge(1.0_wp)
+      do i = 1, size(deck%dirichlet)
+         call first_ramp(deck%dirichlet(i), 'dirichlet#'//str(i))
+      end do
+      do i = 1, size(deck%traction)
+         call first_ramp(deck%traction(i), 'traction#'//str(i))
+      end do
+      if (len(name) == 0 .or. .not. shortest < ramp_steps_min*dt) return
+      msg = 'the load ramp of '//name//' lasts '//sci(shortest)//' s, only '//fixed(shortest/dt, 1)// &
+            ' step(s) of dt = '//sci(dt)//' s (fewer than '//str(nint(ramp_steps_min))//'): the load is '// &
+            'applied almost at once; check the units (the shipped decks use mm, N, MPa, t/mm^3 and s: '// &
+            'material:young in Pa and density in kg/m^3 with lengths in mm make dt 1000 x too long)'
+   contains
+      subroutine first_ramp(cfg, label)
+         type(edge_load_cfg_t), intent(in) :: cfg
+         character(len=*), intent(in) :: label
+         real(wp) :: t0, v0
+         integer :: k
+         t0 = 0
+         v0 = 0
+         do k = 1, cfg%nstage
+            if (cfg%values(k) /= v0) then
+               if (cfg%times(k) - t0 < shortest) then
+                  shortest = cfg%times(k) - t0
+                  name = label//' (stage '//str(k)//')'
+               end if
+               return
+            end if
+            t0 = cfg%times(k)
+            v0 = cfg%values(k)
+         end do
+      end subroutine first_ramp
+   end function ramp_warning
 
    subroutine print_time_step(model, omega2_power, iterations)
       type(model_t), intent(in) :: model

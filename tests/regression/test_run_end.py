@@ -11,7 +11,15 @@
   times 1e-6, 5e-5, 6e-5 s): one summary line names the times not reached and the root attribute
   snapshot_times_not_reached lists them (the old code dropped them silently); a run that reaches
   all its times has neither.
+- A load ramp of a few steps (the units off: material:young in Pa and density in kg/m^3 with
+  lengths in mm make dt 1000 x too long, and the paper scene's 2.5e-6 s ramp 3.1 steps): one
+  warning line on stderr naming the stage, its duration, dt and the units; the run is not
+  refused. The bound is 10 steps (9.5 warned, 10.5 not); no shipped deck is warned about (the
+  old code never warned).
 """
+import glob
+import os
+
 import numpy as np
 
 import c2dtest
@@ -98,6 +106,35 @@ def body(t):
         t.check_equal(run, "no snapshot_times_not_reached attribute", False, "snapshot_times_not_reached" in f.attrs)
         t.check_equal(run, "snapshot groups", 2, len(f["fields"]))
 
+    # ---- 3. a load ramp of a few steps is warned about ----------------------------------------
+    def ramp_lines(run):
+        return [l for l in run.stderr_lines() if "warning" in l and "load ramp" in l]
+
+    run = t.run(t.deck(PAPER), "--set", "material:young=7e10", "--set", "material:density=2700", name="ramp_si_units")
+    t.expect_exit(run, 0)
+    lines = ramp_lines(run)
+    t.check_equal(run, "one warning about the load ramp", 1, len(lines))
+    line = lines[0] if lines else ""
+    with run.open() as f:
+        dt = float(f.attrs["dt"])
+    t.check(run, "the warning names the stage, its duration, its steps, dt and the units",
+            line.startswith("contact2d: warning: ") and "dirichlet#2 (stage 1)" in line and "2.500E-06 s" in line
+            and "only %.1f step(s)" % (2.5e-6 / dt) in line and "dt = %.3E s" % dt in line and "units" in line,
+            "dirichlet#2 (stage 1) ... 2.500E-06 s, only %.1f step(s) of dt = %.3E s ... units" % (2.5e-6 / dt, dt), line)
+    t.check(run, "the run went on (summary printed)", "dt / dt_critical" in run.stdout, True, "dt / dt_critical" in run.stdout)
+    for steps, warned in ((9.5, True), (10.5, False)):
+        run = t.run(t.deck(PAPER), "--set", "solver:dt=5e-10", "--set", "solver:t_ramp=%r" % (steps * 5e-10),
+                    "--set", "solver:max_steps=1", name="ramp_%g_steps" % steps)
+        t.expect_exit(run, 0)
+        t.check_equal(run, "warned about a ramp of %g steps" % steps, warned, len(ramp_lines(run)) == 1)
+    decks = sorted(glob.glob(os.path.join(t.inputs, "*.nml")) + glob.glob(os.path.join(t.here, "decks", "*.nml")))
+    t.check(t.workdir, "shipped decks found", len(decks) >= 20, ">= 20", len(decks))
+    for deck in decks:
+        name = os.path.splitext(os.path.basename(deck))[0]
+        run = t.run(deck, "--set", "solver:max_steps=1", name="ramp_shipped_" + name)
+        t.expect_exit(run, 0)
+        t.check_equal(run, "no load-ramp warning for " + name, [], ramp_lines(run))
+
 
 if __name__ == "__main__":
-    c2dtest.Test("run end: t_end, snapshot times not reached").main(body)
+    c2dtest.Test("run end: t_end, snapshot times not reached, short load ramp").main(body)
