@@ -354,7 +354,7 @@ contains
       if (status == 'interrupted') then
          stat = sys_signal_pending()
          write (error_unit, '(a)') program_name//': interrupted by '//trim(merge('SIGINT ', 'SIGTERM', stat == 2))// &
-            ' at step '//str(solver%step)//' (t = '//str(solver%time)//' s); '//dest// &
+            ' at step '//str(solver%step)//' (t = '//sci(solver%time)//' s); '//dest// &
             " holds the state at that step (status 'interrupted')"//kept_note(dest)
          stop 128 + stat, quiet=.true.
       else if (sys_signal_pending() /= 0) then
@@ -367,9 +367,9 @@ contains
          stop 128 + stat, quiet=.true.
       end if
       if (solver%blown_up) then
-         call fail(2, 'the run blew up at step '//str(solver%step)//' (t = '//str(solver%time)// &
-                   ' s): kinetic energy '//str(solver%kinetic)//' mJ exceeds 1000 x the work put in ('// &
-                   str(solver%work_in)//' mJ) with dt = '//fixed(model%dt/model%dt_critical, 3)// &
+         call fail(2, 'the run blew up at step '//str(solver%step)//' (t = '//sci(solver%time)// &
+                   ' s): kinetic energy '//sci(solver%kinetic)//' mJ exceeds 1000 x the work put in ('// &
+                   sci(solver%work_in)//' mJ) with dt = '//fixed(model%dt/model%dt_critical, 3)// &
                    ' dt_critical; '//dest//' holds the history up to the failure'//kept_note(dest))
       end if
       if (model%contact%stat /= 0) then

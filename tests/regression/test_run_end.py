@@ -16,10 +16,17 @@
   warning line on stderr naming the stage, its duration, dt and the units; the run is not
   refused. The bound is 10 steps (9.5 warned, 10.5 not); no shipped deck is warned about (the
   old code never warned).
+- The SIGINT and blow-up error lines give their reals as the summary does, 4 significant digits
+  (t = 6.220E-07 s, not 6.219569585794207e-7), and the value is the file's.
 """
 import glob
 import os
+import re
+import signal
+import subprocess
+import time
 
+import h5py
 import numpy as np
 
 import c2dtest
@@ -135,6 +142,45 @@ def body(t):
         t.expect_exit(run, 0)
         t.check_equal(run, "no load-ramp warning for " + name, [], ramp_lines(run))
 
+    # ---- 4. the SIGINT and blow-up lines at the summary's precision -----------------------------
+    sci = r"-?\d\.\d{3}E[+-]\d{2}"     # Fortran es10.3, the summary's sci()
+    run = t.run(t.deck("uniaxial_compression.nml"), "--set", "solver:dt_factor=2", "--set", "solver:allow_unstable=.true.",
+                name="blow_up")
+    t.expect_exit(run, 2, stop=False)
+    err = run.error_lines()
+    line = err[0] if err else ""
+    m = re.search(r"blew up at step (\d+) \(t = (\S+) s\): kinetic energy (\S+) mJ exceeds 1000 x the work put in "
+                  r"\((\S+) mJ\)", line)
+    t.check(run, "blow-up line: t, kinetic energy and work in with 4 significant digits",
+            m is not None and all(re.fullmatch(sci, g) for g in m.groups()[1:]), "t = d.dddE+dd s ... d.dddE+dd mJ", line)
+    if m is not None and os.path.exists(run.h5):
+        with run.open() as f:
+            t.check_equal(run, "blow-up line: the file's final time", "%.3E" % float(f.attrs["final_time"]), m.group(2))
+            t.check_equal(run, "blow-up line: the file's steps", int(f.attrs["steps"]), int(m.group(1)))
+
+    folder = t.subdir("sigint")
+    cmd = [t.exe, t.deck("baillet_sassi_2002_p0.nml"), "-o", "out.h5", "-q", "--set", "mesh:level=2",
+           "--set", "solver:tol_residual=1e-300", "--set", "solver:t_end=1.0"]
+    print("-- start (cd %s && %s)" % (folder, " ".join(cmd)))
+    proc = subprocess.Popen(cmd, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    t0 = time.monotonic()
+    while not glob.glob(os.path.join(folder, "out.h5.*.partial")) and time.monotonic() - t0 < 60:
+        time.sleep(0.05)
+    time.sleep(0.5)
+    proc.send_signal(signal.SIGINT)
+    _, stderr = proc.communicate(timeout=120)
+    lines = [l for l in stderr.decode("utf-8", "replace").splitlines() if l.strip()]
+    print("   exit %d; stderr: %s" % (proc.returncode, " | ".join(lines)))
+    t.check_equal("sigint", "exit code", 130, proc.returncode)
+    line = lines[0] if lines else ""
+    m = re.search(r"interrupted by SIGINT at step (\d+) \(t = (\S+) s\)", line)
+    t.check("sigint", "SIGINT line: t with 4 significant digits", m is not None and re.fullmatch(sci, m.group(2)),
+            "at step N (t = d.dddE+dd s)", line)
+    if m is not None:
+        with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+            t.check_equal("sigint", "SIGINT line: the file's final time", "%.3E" % float(f.attrs["final_time"]), m.group(2))
+            t.check_equal("sigint", "SIGINT line: the file's steps", int(f.attrs["steps"]), int(m.group(1)))
+
 
 if __name__ == "__main__":
-    c2dtest.Test("run end: t_end, snapshot times not reached, short load ramp").main(body)
+    c2dtest.Test("run end: t_end, snapshot times not reached, short load ramp, message precision").main(body)
