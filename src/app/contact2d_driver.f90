@@ -53,7 +53,7 @@ contains
       integer(i8) :: fallback_step
       real(wp) :: static_dist
       logical :: static_converged, static_written, static_opened, static_ended, ended
-      character(len=:), allocatable :: static_msg, dest
+      character(len=:), allocatable :: static_msg, dest, mesh_file
 
       call system_clock(clock0, rate)
       call tuner%begin()  ! the set-up window of the thread tuner (contact2d_threads)
@@ -84,9 +84,9 @@ contains
       call deck_read(cli%deck, cli%sets, deck, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
       ! output names before any set-up (contact2d_outpath)
-      dest = ''   ! (here: the mesh file, an input the output must not be)
-      if (len_trim(deck%mesh%file) > 0) dest = beside(cli%deck, trim(deck%mesh%file))
-      call opath%check(cli%output, cli%deck, dest, cli%force, deck%output%xdmf, stat, errmsg)
+      mesh_file = ''   ! an input the output must not be, as the deck
+      if (len_trim(deck%mesh%file) > 0) mesh_file = beside(cli%deck, trim(deck%mesh%file))
+      call opath%check(cli%output, cli%deck, mesh_file, cli%force, deck%output%xdmf, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
       call memory_check(deck, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg//deck_blame(deck, errmsg))

@@ -47,7 +47,7 @@ contains
       integer(i8) :: clock1, rate
       real(wp) :: t_end, t, wall, timings(4), w_prev, wf, wn, kkt_max(4), residual
       real(wp), allocatable :: uprev(:, :), react_prev(:, :), fext_prev(:, :), fn_prev(:), d(:), dprev(:)
-      logical :: converged, ok
+      logical :: converged, ok, run_ended
       character(len=:), allocatable :: message, status, reason, final
 
       code = 1
@@ -208,11 +208,12 @@ contains
          return
       end if
       if (present(written)) written = .true.
-      if (present(ended)) ended = status /= 'interrupted' .and. status /= 'static solver failure'
+      run_ended = status /= 'interrupted' .and. status /= 'static solver failure'
+      if (present(ended)) ended = run_ended
       final = path
       if (present(target)) final = target
       if (present(target) .and. present(replacing)) then
-         if (replacing .and. (status == 'interrupted' .or. status == 'static solver failure')) final = path
+         if (replacing .and. .not. run_ended) final = path
       end if
       call summary()
       call st%free()
