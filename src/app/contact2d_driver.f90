@@ -347,6 +347,9 @@ contains
       if (tuner%active) write (output_unit, '(a)') ' threads             auto: '//str(tuner%nmax)//' on '// &
          fixed(100*real(tuner%steps(2), wp)/max(1.0_wp, real(sum(tuner%steps), wp)), 1)//' % of the steps, 1 on the rest ('// &
          'started on '//str(tuner%started)//', '//str(tuner%switches)//' switches; set OMP_NUM_THREADS to fix the count)'
+      if (allocated(tuner%forced)) write (output_unit, '(a)') ' threads             forced: '//str(tuner%nmax)// &
+         ' on '//str(tuner%steps(2))//' steps, 1 on '//str(tuner%steps(1))//' ('//str(tuner%switches)// &
+         ' switches, CONTACT2D_THREAD_SWITCHES)'
       if (deck%solver%compare_static .and. static_dist < huge(1.0_wp)) then
          write (output_unit, '(a)') ' static distance     '//sci(static_dist)//' (energy norm ||u - u_static||_K / '// &
             '||u_static||_K'//trim(merge('); static NOT converged', ')                      ', .not. static_converged))

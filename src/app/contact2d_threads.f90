@@ -8,10 +8,15 @@
 !> choice: every sum has a fixed order (per-row and per-block partial sums), so any thread count
 !> gives the same bits.
 !>
-!> Active only when the user did not set OMP_NUM_THREADS (then the team is the user's).
+!> Active only when the user did not set OMP_NUM_THREADS (then the team is the user's), or when
+!> CONTACT2D_THREAD_SWITCHES lists steps (comma-separated, increasing): then no policy runs and
+!> the count goes from the team to one thread and back, alternately, at the end of the first
+!> chunk of steps that reaches each listed step (a check of the bits under switching: the
+!> results must equal one thread's; docs/performance.md).
 module contact2d_threads
    use contact2d_kinds, only: wp
    use, intrinsic :: iso_c_binding, only: c_int, c_double
+   use, intrinsic :: iso_fortran_env, only: error_unit
    use omp_lib, only: omp_get_max_threads, omp_set_num_threads, omp_get_thread_num
    use contact2d_thread_policy, only: thread_policy_t, one_thread
    implicit none
@@ -75,6 +80,9 @@ module contact2d_threads
       integer :: started = 1             !< threads of the first chunk
       integer :: nudges = 0              !< team spread again after a chunk with two threads on one CPU
       integer(8) :: steps(2) = 0         !< steps run with one thread and with nmax
+      !> forced switches (CONTACT2D_THREAD_SWITCHES): the listed steps and the next one to reach
+      integer(8), allocatable :: forced(:)
+      integer :: next_forced = 1
    contains
       procedure :: begin => tuner_begin
       procedure :: init => tuner_init
@@ -88,6 +96,8 @@ contains
    subroutine tuner_begin(this)
       class(thread_tuner_t), intent(inout) :: this
       integer :: length, status
+      ! (read before anything is written: a bad value stops the run with nothing left behind)
+      call forced_steps(this%forced)
       call get_environment_variable('OMP_NUM_THREADS', length=length, status=status)
       if (status == 0 .or. omp_get_max_threads() < 2) return
       this%mark = cpu_sample()
@@ -107,6 +117,12 @@ contains
       this%switches = 0
       this%steps = 0
       this%active = status /= 0 .and. this%nmax > 1 .and. parallel_mesh
+      if (allocated(this%forced)) then
+         ! a forced schedule: the team first, no policy
+         this%active = .false.
+         this%started = this%current
+         return
+      end if
       if (.not. this%active) return
       call measure(this, window_start)
       this%others_start = this%others
@@ -132,6 +148,16 @@ contains
       if (nsteps <= 0) return
       k = merge(1, 2, this%current == 1)
       this%steps(k) = this%steps(k) + nsteps
+      if (allocated(this%forced)) then
+         do while (this%next_forced <= size(this%forced))
+            if (sum(this%steps) < this%forced(this%next_forced)) exit
+            this%next_forced = this%next_forced + 1
+            this%current = merge(this%nmax, 1, this%current == 1)
+            this%switches = this%switches + 1
+            call omp_set_num_threads(this%current)
+         end do
+         return
+      end if
       if (.not. this%active) return
       if (this%current > 1) call keep_apart(this)
       call measure(this, window_run)
@@ -188,6 +214,46 @@ contains
       rc = affinity_nudge(int(omp_get_thread_num(), c_int))
       !$omp end parallel
    end subroutine keep_apart
+
+   !> The steps of CONTACT2D_THREAD_SWITCHES (unallocated when it is unset or empty); a value
+   !> that is not a list of increasing positive integers stops the run with one line.
+   subroutine forced_steps(steps)
+      integer(8), allocatable, intent(out) :: steps(:)
+      character(len=:), allocatable :: text
+      integer :: length, status, i, j, n, ios
+      integer(8) :: k
+      call get_environment_variable('CONTACT2D_THREAD_SWITCHES', length=length, status=status)
+      if (status /= 0 .or. length == 0) return
+      allocate (character(len=length) :: text)
+      call get_environment_variable('CONTACT2D_THREAD_SWITCHES', text)
+      if (len_trim(text) == 0) return
+      n = 1
+      do i = 1, len(text)
+         if (text(i:i) == ',') n = n + 1
+      end do
+      allocate (steps(n))
+      i = 1
+      do j = 1, n
+         length = index(text(i:), ',') - 1
+         if (length < 0) length = len(text) - i + 1
+         ios = 1
+         if (length > 0 .and. verify(trim(adjustl(text(i:i + length - 1))), '0123456789') == 0) &
+            read (text(i:i + length - 1), *, iostat=ios) k
+         if (ios /= 0) call bad()
+         if (k < 1) call bad()
+         if (j > 1) then
+            if (k <= steps(j - 1)) call bad()
+         end if
+         steps(j) = k
+         i = i + length + 1
+      end do
+   contains
+      subroutine bad()
+         write (error_unit, '(a)') 'contact2d: error: CONTACT2D_THREAD_SWITCHES = "'//text// &
+            '": give increasing positive step numbers separated by commas'
+         stop 1, quiet=.true.
+      end subroutine bad
+   end subroutine forced_steps
 
    type(cpu_sample_t) function cpu_sample() result(s)
       call system_clock(s%count)

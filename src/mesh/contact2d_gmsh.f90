@@ -12,6 +12,7 @@ module contact2d_gmsh
                                           c_f_procpointer, c_long_long
    use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, ieee_set_flag, &
                                             ieee_all, ieee_usual
+   use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    use contact2d_gmsh_config, only: gmsh_library_path
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str
@@ -196,11 +197,16 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       logical :: halting(size(ieee_usual))
+      integer :: threads
       ! Gmsh's own arithmetic may raise IEEE flags (e.g. a 0/0 it handles itself): no floating-
       ! point traps while it runs (the Debug build traps invalid, zero and overflow), restored after
       call ieee_get_halting_mode(ieee_usual, halting)
       call ieee_set_halting_mode(ieee_usual, .false.)
+      ! Gmsh sets the OpenMP thread count to its General.NumThreads (1) in gmshInitialize: the
+      ! run's own count (OMP_NUM_THREADS, or all cores) is put back after it
+      threads = omp_get_max_threads()
       call read_untrapped(path, level, mesh, stat, errmsg)
+      call omp_set_num_threads(threads)
       call ieee_set_flag(ieee_all, .false.)
       call ieee_set_halting_mode(ieee_usual, halting)
    end subroutine gmsh_read

@@ -14,10 +14,15 @@ mass / body mass) at least (the added mass lowers omega_1 by at most that factor
 2 for the added mass allowed here (<= 1 body mass, checked).
 
 The general (Gmsh) path's sweep (src/element/contact2d_rows.f90) sums in fixed chunks: one and two
-OpenMP threads must give the same bits. Checked on hertz_cylinder_p1 at level 1 (5721 nodes, above
-the 4096-node threshold of the parallel loops), 1500 steps with a ramp of 2e-6 s (contact active).
+OpenMP threads must give the same bits, and so must a run whose thread count changes while it runs
+(CONTACT2D_THREAD_SWITCHES: the team, then one thread, then the team ..., at the listed steps).
+Checked on hertz_cylinder_p1 at level 1 (5721 nodes, above the 4096-node threshold of the parallel
+loops), 1500 steps with a ramp of 2e-6 s (contact active). The switched run's summary must say that
+its team had 2 threads: Gmsh sets OpenMP's thread count to 1 when it starts, and a run on a Gmsh
+mesh that did not set its own count back compared one thread with one thread.
 """
 import os
+import re
 
 import numpy as np
 
@@ -74,11 +79,33 @@ def body(t):
         env = dict(os.environ, OMP_NUM_THREADS=n)
         runs[n] = t.run(deck, *args, name="threads_%s" % n, env=env)
         t.expect_exit(runs[n], 0)
-    a, b = final(runs["1"]), final(runs["2"])
-    for key in ("u", "v", "fn", "ekin"):
-        t.check(runs["2"], "%s bitwise equal on 1 and 2 threads (general path)" % key,
-                np.array_equal(a[key], b[key]), "identical", "identical" if np.array_equal(a[key], b[key])
-                else "max diff %.3e" % np.abs(a[key] - b[key]).max())
+    # switches at chunk ends (check_interval = 10): the team, 1 from step 100, the team from 330, ...
+    switches = "100,330,340,900,1210"
+    runs["switched"] = t.run(deck, *args, name="threads_switched", quiet=False,
+                             env=dict(os.environ, OMP_NUM_THREADS="2", CONTACT2D_THREAD_SWITCHES=switches))
+    t.expect_exit(runs["switched"], 0)
+    line = re.search(r"threads +forced: (\d+) on (\d+) steps, 1 on (\d+) \((\d+) switches", runs["switched"].stdout)
+    team, on_team, on_one, count = (int(g) for g in line.groups()) if line else (0, 0, 0, 0)
+    t.check(runs["switched"], "team of the switched run (Gmsh must not leave OpenMP on 1 thread)", team == 2,
+            "2", str(team))
+    # steps 1-100 and 331-340 and 901-1210 on the team: 100 + 10 + 310 = 420, the rest (1080) on one
+    t.check(runs["switched"], "steps on the team and on one thread", (on_team, on_one, count) == (420, 1080, 5),
+            "(420, 1080, 5)", str((on_team, on_one, count)))
+    a = final(runs["1"])
+    for n in ("2", "switched"):
+        b = final(runs[n])
+        for key in ("u", "v", "fn", "ekin"):
+            same = np.array_equal(a[key], b[key])
+            t.check(runs[n], "%s bitwise equal on 1 thread and %s (general path)" % (key, n), same, "identical",
+                    "identical" if same else "max diff %.3e" % np.abs(a[key] - b[key]).max())
+    # a schedule that is not increasing: one line, exit 1, nothing written
+    bad = t.run(deck, *args, name="threads_bad_schedule",
+                env=dict(os.environ, OMP_NUM_THREADS="2", CONTACT2D_THREAD_SWITCHES="100,50"))
+    t.expect_exit(bad, 1, stop=False)
+    t.check(bad, "one error line naming CONTACT2D_THREAD_SWITCHES", len(bad.stderr_lines()) >= 1 and
+            "CONTACT2D_THREAD_SWITCHES" in bad.stderr_lines()[-1] and len(bad.error_lines()) == 1,
+            "one line", repr(bad.error_lines()))
+    t.check(bad, "nothing written", os.listdir(bad.cwd) == [], "[]", repr(os.listdir(bad.cwd)))
 
 
 if __name__ == "__main__":
