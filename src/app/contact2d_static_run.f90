@@ -12,7 +12,8 @@ module contact2d_static_run
    use contact2d_model, only: model_t
    use contact2d_explicit, only: explicit_t, damping_none
    use contact2d_output, only: output_t
-   use contact2d_static, only: static_t, kkt_names
+   use contact2d_static, only: static_t
+   use contact2d_kkt, only: kkt_names
    use contact2d_sys, only: sys_signal_pending
    implicit none
    private

@@ -19,20 +19,19 @@ module contact2d_static
    use contact2d_kinds, only: wp, i8
    use contact2d_strings, only: str
    use contact2d_model, only: model_t
-   use contact2d_cholmod, only: cholmod_t, dense_lauum, dense_potrf, dense_potrs, dense_gesv
+   use contact2d_cholmod, only: cholmod_t, dense_lauum, dense_gesv
+   use contact2d_pdas, only: pdas_solve, classify, max_pdas
+   use contact2d_kkt, only: kkt_names, kkt_values, absmax
    implicit none
    private
-   public :: static_t, kkt_names, kkt_values, singular_pivot_ratio, pdas_solve, max_pdas
+   public :: static_t, singular_pivot_ratio
 
-   !> KKT residual names (summary and HDF5 attributes kkt_<name>), all relative.
-   character(len=24), parameter :: kkt_names(4) = [character(len=24) :: &
-      'normal_feasibility', 'complementarity', 'friction_feasibility', 'equilibrium']
    !> A pivot L_jj^2 / K_jj below this marks a singular stiffness (a free rigid-body mode).
    real(wp), parameter :: singular_pivot_ratio = 1.0e-11_wp
    !> Local node and component of each of the 8 element dofs (u1x, u1y, u2x, ...).
    integer, parameter :: node_of(8) = [1, 1, 2, 2, 3, 3, 4, 4], comp_of(8) = [1, 2, 1, 2, 1, 2, 1, 2]
-   !> PDAS and fixed-point iteration limits.
-   integer, parameter :: max_pdas = 200, max_outer = 50
+   !> Fixed-point iteration limit.
+   integer, parameter :: max_outer = 50
    !> The friction limits of two passes of the fixed point agree to this (relative to the largest).
    real(wp), parameter :: fp_tol = 1.0e-12_wp
    logical, parameter :: debug = .false.
@@ -750,128 +749,6 @@ contains
       end do
    end subroutine nodal_forces
 
-   !> Primal-dual active set on the condensed problem A (y - y0) + lambda = 0 (cvec = A y0), on
-   !> plain arrays (the engine's pass and the unit tests call it): a(m, m) SPD, the first nc unknowns
-   !> normal, the others tangential with limits lim(m - nc). Unknown r is in state
-   !> 1 (normal active: y = 0), 0 (normal inactive: lambda = 0), 3 (stick: y = 0),
-   !> +2 / -2 (slip: lambda = +-lim), 4 (no friction: lambda = 0). The sets follow
-   !> lambda_n = max(0, lambda_n + A_rr y_n), lambda_t = proj(lambda_t + ct A_rr y_t).
-   !> state on entry: the starting sets (-99 in state(1): everything in contact and stuck); on exit
-   !> the last sets, lambda the multipliers and y the contact unknowns of the last solve.
-   !> ok = .false. if a set repeats an earlier one (a cycle) or max_iter is reached: lambda is then
-   !> the last iterate, not a solution. stat /= 0 only on a LAPACK failure.
-   subroutine pdas_solve(a, nc, cvec, lim, ct, max_iter, state, lambda, y, nit, ok, stat, errmsg)
-      real(wp), intent(in) :: a(:, :), cvec(:), lim(:)
-      integer, intent(in) :: nc
-      real(wp), intent(in) :: ct   !< tangential complementarity constant, a fraction of A_rr
-      integer, intent(in) :: max_iter
-      integer, intent(inout) :: state(:)
-      real(wp), intent(inout) :: lambda(:)
-      real(wp), intent(out) :: y(:)
-      integer, intent(out) :: nit
-      logical, intent(out) :: ok
-      integer, intent(out) :: stat
-      character(len=:), allocatable, intent(out) :: errmsg
-      integer, allocatable :: hist(:, :), free_set(:), new_state(:)
-      real(wp), allocatable :: akk(:, :), rhs(:)
-      integer :: it, r, nk, info, j, m
-
-      stat = 0
-      errmsg = ''
-      ok = .false.
-      m = size(cvec)
-      allocate (hist(m, max(max_iter, 1)), new_state(m))
-      y = 0
-      nit = 0
-      if (m == 0) then
-         ok = .true.
-         return
-      end if
-      ! start: the previous sets (warm start), else everything in contact and stuck
-      if (state(1) == -99) then
-         state(1:nc) = 1
-         state(nc + 1:) = 3
-      end if
-      do r = nc + 1, m
-         if (lim(r - nc) <= 0) state(r) = 4
-         if (lim(r - nc) > 0 .and. state(r) == 4) state(r) = 3
-      end do
-      do it = 1, max_iter
-         nit = it
-         hist(:, it) = state
-         ! known lambda on K (inactive, slip, no friction), y = 0 on J (active, stick)
-         free_set = pack([(r, r=1, m)], state == 0 .or. abs(state) == 2 .or. state == 4)
-         do r = 1, m
-            select case (state(r))
-            case (0, 4); lambda(r) = 0
-            case (2); lambda(r) = lim(r - nc)
-            case (-2); lambda(r) = -lim(r - nc)
-            end select
-         end do
-         nk = size(free_set)
-         ! A_KK (y_K - y0_K) - A_KJ y0_J = -lambda_K  =>  A_KK y_K = cvec_K - lambda_K
-         y = 0
-         if (nk > 0) then
-            akk = a(free_set, free_set)
-            rhs = cvec(free_set) - lambda(free_set)
-            call dense_potrf('L', nk, akk, nk, info)
-            if (info /= 0) then
-               stat = 2
-               errmsg = 'LAPACK dpotrf failed on the condensed contact matrix (info = '//str(info)//')'
-               return
-            end if
-            call dense_potrs('L', nk, 1, akk, nk, rhs, nk, info)
-            y(free_set) = rhs
-         end if
-         ! lambda_J = cvec_J - A_JK y_K
-         do r = 1, m
-            if (any(state(r) == [1, 3])) then
-               lambda(r) = cvec(r) - dot_product(a(r, free_set), y(free_set))
-            end if
-         end do
-         call classify(a, nc, lambda, y, lim, ct, new_state)
-         if (debug) print '(a,i4,a,6i6)', 'pdas', it, ' active/inactive/stick/slip+/slip-/free', &
-            count(new_state == 1), count(new_state == 0), count(new_state == 3), count(new_state == 2), &
-            count(new_state == -2), count(new_state == 4)
-         if (all(new_state == state)) then
-            ok = .true.
-            return
-         end if
-         do j = 1, it - 1
-            if (all(new_state == hist(:, j))) then
-               state = new_state
-               return   ! cycling
-            end if
-         end do
-         state = new_state
-      end do
-   end subroutine pdas_solve
-
-   !> The sets from (lambda, y): see pdas_solve.
-   pure subroutine classify(a, nc, lambda, y, lim, ct, state)
-      real(wp), intent(in) :: a(:, :)
-      integer, intent(in) :: nc
-      real(wp), intent(in) :: lambda(:), y(:), lim(:), ct
-      integer, intent(out) :: state(:)
-      integer :: r
-      real(wp) :: v
-      do r = 1, nc
-         state(r) = merge(1, 0, lambda(r) + a(r, r)*y(r) > 0)
-      end do
-      do r = nc + 1, size(lambda)
-         if (lim(r - nc) <= 0) then
-            state(r) = 4
-         else
-            v = lambda(r) + ct*a(r, r)*y(r)
-            if (abs(v) <= lim(r - nc)) then
-               state(r) = 3
-            else
-               state(r) = merge(2, -2, v > 0)
-            end if
-         end if
-      end do
-   end subroutine classify
-
    !> The KKT residuals of the state (kkt_values), from the full displacement u and u_prev, the
    !> displacement at the start of the increment.
    subroutine kkt_residuals(this, model, uprev)
@@ -905,71 +782,6 @@ contains
       end if
       this%kkt = kkt_values(this%u, e, lam, ftk, limk, psi, this%fext, this%fc, this%fint, this%dof > 0)
    end subroutine kkt_residuals
-
-   !> The four relative KKT residuals (kkt_names, docs/static.md "Algorithm" 6) on plain arrays.
-   !> u: the full displacement (2, nnode), for max|u|. Per contact node (P0: per dual cell) e the
-   !> normal distance d = u.n - g (P0: (D d)_i / w_i) and lam its multiplier (F_n; P0: mu_n).
-   !> Per tangential unknown ft its F_t, lim its friction limit (s w, mu F_n, 0) and psi its
-   !> tangential displacement in the increment, (u - u_prev).t. The body receives -F_t t, so
-   !> friction opposes the slip when F_t psi = lim |psi|. Per dof (2, nnode): fext, fc (the contact
-   !> force on the body), fint = K u, free (.false. on prescribed dofs, whose residual is their
-   !> reaction).
-   !>   normal feasibility   max(e, 0) / max|u|
-   !>   complementarity      max(|lam e| / (max|lam| max|u|), max(-lam, 0) / max|lam|)
-   !>   friction             max(|F_t| - lim, 0) / max lim and |lim |psi| - F_t psi| / (max lim max|u|)
-   !>   equilibrium          ||fext + fc - fint||_inf on the free dofs / max(reaction, fext, fc)
-   !> Without contact (size(e) = 0) the first three are 0.
-   pure function kkt_values(u, e, lam, ft, lim, psi, fext, fc, fint, free) result(kkt)
-      real(wp), intent(in) :: u(:, :), e(:), lam(:), ft(:), lim(:), psi(:), fext(:, :), fc(:, :), fint(:, :)
-      logical, intent(in) :: free(:, :)
-      real(wp) :: kkt(4)
-      real(wp) :: umax, lmax, r, rfree, scale
-      integer :: n, c, k
-
-      kkt = 0
-      ! equilibrium first: its force scale also scales the friction residual when no node has a limit
-      rfree = 0
-      scale = 0
-      do n = 1, size(u, 2)
-         do c = 1, 2
-            r = fext(c, n) + fc(c, n) - fint(c, n)
-            if (free(c, n)) then
-               rfree = max(rfree, abs(r))
-            else
-               scale = max(scale, abs(r))
-            end if
-            scale = max(scale, abs(fext(c, n)), abs(fc(c, n)))
-         end do
-      end do
-      ! (nothing loaded, nothing reacting: the residual is the absolute one, 0/0 never formed)
-      kkt(4) = rfree
-      if (scale > 0) kkt(4) = rfree/scale
-      umax = max(maxval(abs(u)), tiny(1.0_wp))
-      if (size(e) > 0) then
-         lmax = max(maxval(abs(lam)), tiny(1.0_wp))
-         kkt(1) = max(maxval(e), 0.0_wp)/umax
-         ! (lmax umax floored: both may be near tiny on the first of many small increments, and
-         ! their product would be 0, the ratio 0/0)
-         kkt(2) = max(maxval(abs(lam*e))/max(lmax*umax, tiny(1.0_wp)), maxval(-lam)/lmax, 0.0_wp)
-         ! no limit anywhere (Coulomb with every node separated, tresca_scope = 'contact' with none
-         ! in contact): any F_t is wrong, measured against the problem's forces (F_c holds F_t, so
-         ! the ratio is finite), not against a limit of 0
-         lmax = absmax(lim)
-         if (lmax == 0) lmax = scale
-         lmax = max(lmax, tiny(1.0_wp))
-         do k = 1, size(ft)
-            kkt(3) = max(kkt(3), max(abs(ft(k)) - lim(k), 0.0_wp)/lmax, &
-                         abs(lim(k)*abs(psi(k)) - ft(k)*psi(k))/max(lmax*umax, tiny(1.0_wp)))
-         end do
-      end if
-   end function kkt_values
-
-   !> max |x|, 0 for an empty x.
-   pure real(wp) function absmax(x)
-      real(wp), intent(in) :: x(:)
-      absmax = 0
-      if (size(x) > 0) absmax = maxval(abs(x))
-   end function absmax
 
    subroutine static_free(this)
       class(static_t), intent(inout) :: this
