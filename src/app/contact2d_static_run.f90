@@ -12,7 +12,7 @@ module contact2d_static_run
    use contact2d_model, only: model_t
    use contact2d_explicit, only: explicit_t, damping_none
    use contact2d_output, only: output_t
-   use contact2d_static, only: static_t
+   use contact2d_static, only: static_t, static_saved_t
    use contact2d_kkt, only: kkt_names
    use contact2d_sys, only: sys_signal_pending
    implicit none
@@ -44,7 +44,7 @@ contains
       type(static_t) :: st
       type(explicit_t), target :: state
       type(output_t) :: out
-      integer :: k, nk, stat, i
+      integer :: k, nk, stat, i, splits
       integer(i8) :: clock1, rate
       real(wp) :: t_end, t, wall, timings(4), w_prev, wf, wn, kkt_max(4), residual
       real(wp), allocatable :: uprev(:, :), react_prev(:, :), fext_prev(:, :), fn_prev(:), d(:), dprev(:)
@@ -69,6 +69,7 @@ contains
          return
       end if
       nk = deck%solver%static_increments
+      st%max_iter = deck%solver%static_iterations
       t_end = model%load%end_time()
       model%dt = 0
       write (output_unit, '(a)') 'static engine: '//str(st%nfree)//' free dofs, '//str(st%ncdof)// &
@@ -113,20 +114,78 @@ contains
       status = 'converged'
       kkt_max = 0
       residual = 0
+      splits = 0
       do k = 1, nk
          if (sys_signal_pending() /= 0) then
             converged = .false.
             status = 'interrupted'
             exit
          end if
-         t = t_end*real(k, wp)/nk
-         call st%increment(model, t, ok, message, stat, errmsg)
+         call advance(st, model, t_end*real(k - 1, wp)/nk, t_end*real(k, wp)/nk, deck%solver%static_splits, splits, &
+                      accept, ok, message, stat, errmsg)
          if (stat /= 0) then
             converged = .false.
             status = 'static solver failure'
             reason = errmsg//' (increment '//str(k)//')'
             exit
          end if
+         if (.not. ok) then
+            converged = .false.
+            status = 'not converged: '//message//' (increment '//str(k)//')'
+            if (deck%solver%static_splits > 0) status = status//', also in '// &
+               str(2**deck%solver%static_splits)//' parts (solver:static_splits = '//str(deck%solver%static_splits)//')'
+            exit
+         end if
+      end do
+
+      call system_clock(clock1, rate)
+      wall = real(clock1 - clock0, wp)/rate
+      timings = [st%time_factor + st%time_condense, st%time_pdas, 0.0_wp, 0.0_wp]
+      do i = 1, 4
+         call out%file%attr(out%file%id, 'kkt_'//trim(kkt_names(i)), kkt_max(i))
+      end do
+      call out%file%attr(out%file%id, 'static_increments', nk)
+      call out%file%attr(out%file%id, 'static_steps', int(state%step))
+      call out%file%attr(out%file%id, 'static_splits', splits)
+      call out%file%attr(out%file%id, 'static_iterations', st%iterations)
+      call out%file%attr(out%file%id, 'static_outer_iterations', st%outer_iterations)
+      call out%file%attr(out%file%id, 'factor_nonzeros', st%chol%lnz)
+      call out%file%attr(out%file%id, 'factor_flops', st%chol%flops)
+      call out%file%attr(out%file%id, 'time_factor_seconds', st%time_factor)
+      call out%file%attr(out%file%id, 'time_condense_seconds', st%time_condense)
+      call out%file%attr(out%file%id, 'time_solve_seconds', st%time_pdas)
+      call out%finish(model, state, converged, status, wall, timings, stat, errmsg)
+      if (stat /= 0) then
+         code = 2
+         call st%free()
+         return
+      end if
+      if (present(written)) written = .true.
+      run_ended = status /= 'interrupted' .and. status /= 'static solver failure'
+      if (present(ended)) ended = run_ended
+      final = path
+      if (present(target)) final = target
+      if (present(target) .and. present(replacing)) then
+         if (replacing .and. .not. run_ended) final = path
+      end if
+      call summary()
+      call st%free()
+      if (converged) then
+         code = 0
+         errmsg = ''
+      else
+         code = 2
+         errmsg = 'static engine: '//status
+         if (len(reason) > 0) errmsg = errmsg//': '//reason
+         errmsg = errmsg//'; '//final//' holds the last iterate'
+         if (present(target) .and. final == path) errmsg = errmsg//'; the existing '//target// &
+            ' is kept (--force replaces a result only with a run that reaches its end)'
+      end if
+   contains
+      !> After each settled (sub-)increment at time t: the state for the writer, the work and
+      !> dissipation of the increment, one history sample.
+      subroutine accept(t)
+         real(wp), intent(in) :: t
          kkt_max = max(kkt_max, st%kkt)
          ! the state for the output module (an explicit_t at rest)
          state%u = st%u
@@ -134,7 +193,7 @@ contains
          state%fint = st%fint
          state%fext = st%fext
          state%fc = st%fc
-         state%step = k
+         state%step = state%step + 1
          state%time = t
          state%kinetic = 0
          state%strain = 0.5_wp*sum(st%u*st%fint)
@@ -181,62 +240,18 @@ contains
          fext_prev = st%fext
          uprev = st%u
          call out%sample(state, model, residual)
-         if (.not. ok) then
-            converged = .false.
-            status = 'not converged: '//message//' (increment '//str(k)//')'
-            exit
-         end if
-      end do
+      end subroutine accept
 
-      call system_clock(clock1, rate)
-      wall = real(clock1 - clock0, wp)/rate
-      timings = [st%time_factor + st%time_condense, st%time_pdas, 0.0_wp, 0.0_wp]
-      do i = 1, 4
-         call out%file%attr(out%file%id, 'kkt_'//trim(kkt_names(i)), kkt_max(i))
-      end do
-      call out%file%attr(out%file%id, 'static_increments', nk)
-      call out%file%attr(out%file%id, 'static_iterations', st%iterations)
-      call out%file%attr(out%file%id, 'static_outer_iterations', st%outer_iterations)
-      call out%file%attr(out%file%id, 'factor_nonzeros', st%chol%lnz)
-      call out%file%attr(out%file%id, 'factor_flops', st%chol%flops)
-      call out%file%attr(out%file%id, 'time_factor_seconds', st%time_factor)
-      call out%file%attr(out%file%id, 'time_condense_seconds', st%time_condense)
-      call out%file%attr(out%file%id, 'time_solve_seconds', st%time_pdas)
-      call out%finish(model, state, converged, status, wall, timings, stat, errmsg)
-      if (stat /= 0) then
-         code = 2
-         call st%free()
-         return
-      end if
-      if (present(written)) written = .true.
-      run_ended = status /= 'interrupted' .and. status /= 'static solver failure'
-      if (present(ended)) ended = run_ended
-      final = path
-      if (present(target)) final = target
-      if (present(target) .and. present(replacing)) then
-         if (replacing .and. .not. run_ended) final = path
-      end if
-      call summary()
-      call st%free()
-      if (converged) then
-         code = 0
-         errmsg = ''
-      else
-         code = 2
-         errmsg = 'static engine: '//status
-         if (len(reason) > 0) errmsg = errmsg//': '//reason
-         errmsg = errmsg//'; '//final//' holds the last iterate'
-         if (present(target) .and. final == path) errmsg = errmsg//'; the existing '//target// &
-            ' is kept (--force replaces a result only with a run that reaches its end)'
-      end if
-   contains
       subroutine summary()
          integer :: status_c(model%contact%nc)
          write (output_unit, '(a)') repeat('-', 72)
          write (output_unit, '(a)') ' method              static (CHOLMOD, contact condensed onto Gamma_c, '// &
             'primal-dual active set)'
-         write (output_unit, '(a)') ' increments          '//str(state%step)//' of '//str(nk)//' ('// &
-            str(st%iterations)//' active-set iterations, '//str(st%outer_iterations)//' threshold passes)'
+         write (output_unit, '(a)') ' increments          '//str(state%step)//trim(merge(' of '//str(nk), &
+            ' for '//str(nk), splits == 0))//' ('//str(st%iterations)//' active-set iterations, '// &
+            str(st%outer_iterations)//' threshold passes)'
+         if (splits > 0) write (output_unit, '(a)') '                     '//str(splits)//' halving(s): '// &
+            'an increment that did not settle was taken again in halves (solver:static_splits)'
          write (output_unit, '(a)') ' converged           '//trim(merge('yes', 'NO ', converged))// &
             trim(merge(' '//status, repeat(' ', len(status) + 1), .not. converged))
          do i = 1, 4
@@ -257,6 +272,57 @@ contains
       end subroutine summary
    end subroutine static_run
 
+   !> Take the static engine from its state at t_from to t_to: one increment or, when that does not
+   !> settle (the active set cycles or needs more than solver:static_iterations iterations), the
+   !> same span in two halves, each from the last settled state, and so on down to
+   !> 2^max_splits parts (a smaller step changes fewer contact and slip states at once). Each
+   !> halving adds one to splits. accept(t) follows every settled step. ok = .false. with message
+   !> when a step of the smallest size does not settle: that step's last iterate is accepted too.
+   !> stat /= 0 with errmsg when the engine fails.
+   subroutine advance(st, model, t_from, t_to, max_splits, splits, accept, ok, message, stat, errmsg)
+      type(static_t), intent(inout) :: st
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: t_from, t_to
+      integer, intent(in) :: max_splits
+      integer, intent(inout) :: splits
+      interface
+         subroutine accept(t)
+            import :: wp
+            real(wp), intent(in) :: t
+         end subroutine accept
+      end interface
+      logical, intent(out) :: ok
+      character(len=:), allocatable, intent(out) :: message
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      type(static_saved_t) :: saved
+      integer(i8) :: parts, pos, size
+      real(wp) :: t
+      ! positions in units of 1 / 2^max_splits of the span; the last step ends at t_to exactly
+      parts = 2_i8**max_splits
+      pos = 0
+      size = parts
+      do while (pos < parts)
+         if (pos + size == parts) then
+            t = t_to
+         else
+            t = t_from + (t_to - t_from)*(real(pos + size, wp)/real(parts, wp))
+         end if
+         if (size > 1) call st%save(saved)
+         call st%increment(model, t, ok, message, stat, errmsg)
+         if (stat /= 0) return
+         if (.not. ok .and. size > 1) then
+            call st%restore(saved)
+            size = size/2
+            splits = splits + 1
+            cycle
+         end if
+         call accept(t)
+         if (.not. ok) return
+         pos = pos + size
+      end do
+   end subroutine advance
+
    !> Energy-norm distance ||u - u_s||_K / ||u_s||_K of the displacement u to the static solution
    !> of the same model (solver:static_increments increments). stat /= 0 with errmsg if the
    !> static engine refuses or fails; converged = .false. if it did not converge.
@@ -272,7 +338,7 @@ contains
       real(wp), allocatable :: du(:, :), kdu(:, :)
       character(len=:), allocatable :: message
       real(wp) :: t_end
-      integer :: k, nk
+      integer :: k, nk, splits
       logical :: ok
 
       dist = huge(1.0_wp)
@@ -283,7 +349,9 @@ contains
       if (stat /= 0) return
       nk = deck%solver%static_increments
       t_end = model%load%end_time()
+      st%max_iter = deck%solver%static_iterations
       converged = .true.
+      splits = 0
       do k = 1, nk
          ! SIGINT/SIGTERM: give up the comparison (the caller finishes the run's own file)
          if (sys_signal_pending() /= 0) then
@@ -291,7 +359,8 @@ contains
             errmsg = 'interrupted by a signal before increment '//str(k)//'; no comparison written'
             return
          end if
-         call st%increment(model, t_end*real(k, wp)/nk, ok, message, stat, errmsg)
+         call advance(st, model, t_end*real(k - 1, wp)/nk, t_end*real(k, wp)/nk, deck%solver%static_splits, splits, &
+                      no_sample, ok, message, stat, errmsg)
          if (stat /= 0) return
          converged = converged .and. ok
       end do
@@ -300,6 +369,11 @@ contains
       call model%stiff%apply(du, kdu)
       dist = sqrt(max(sum(du*kdu), 0.0_wp))/sqrt(max(sum(st%u*st%fint), tiny(1.0_wp)))
       call st%free()
+   contains
+      subroutine no_sample(t)
+         real(wp), intent(in) :: t
+         if (.false.) dist = t   ! (the comparison keeps only the end state)
+      end subroutine no_sample
    end subroutine static_distance
 
    !> The friction laws the static engine solves: frictionless, Tresca and Coulomb

@@ -127,6 +127,10 @@ module contact2d_deck
       real(wp) :: mass_scaling = 0        !< target stable step [s] of mass scaling; 0: off (issue 13)
       character(len=8) :: method = 'explicit'  !< 'explicit' | 'static' (docs/static.md, issue 14)
       integer :: static_increments = 1    !< static load increments along the load curves, >= 1
+      !> static: active-set iterations of one solve before an increment counts as not settled
+      integer :: static_iterations = 200
+      !> static: halvings of an increment that does not settle (up to 2^static_splits parts)
+      integer :: static_splits = 6
       logical :: compare_static = .false. !< explicit run: report the energy distance to the static solution
       !> 'auto' | 'on' | 'off': stop at convergence; 'auto' is off for dynamic runs (issue 12)
       character(len=8) :: convergence_test = 'auto'
@@ -1014,12 +1018,13 @@ contains
       logical :: allow_unstable
       integer :: max_steps, damping_interval, check_interval, power_iterations, ios, i
       character(len=line_len) :: damping, dt_limit, method, convergence_test
-      integer :: static_increments
+      integer :: static_increments, static_iterations, static_splits
       logical :: compare_static
       character(len=256) :: msg
       namelist /solver/ dt, dt_factor, allow_unstable, t_ramp, t_end, max_steps, damping, &
          alpha, damping_interval, tol_residual, tol_kinetic, check_interval, power_iterations, &
-         dt_limit, mass_scaling, method, static_increments, compare_static, convergence_test
+         dt_limit, mass_scaling, method, static_increments, compare_static, convergence_test, &
+         static_iterations, static_splits
       dt_limit = cfg%dt_limit; mass_scaling = cfg%mass_scaling
       method = cfg%method; static_increments = cfg%static_increments; compare_static = cfg%compare_static
       dt = cfg%dt; dt_factor = cfg%dt_factor; allow_unstable = cfg%allow_unstable
@@ -1028,6 +1033,7 @@ contains
       tol_residual = cfg%tol_residual; tol_kinetic = cfg%tol_kinetic
       check_interval = cfg%check_interval; power_iterations = cfg%power_iterations
       convergence_test = cfg%convergence_test
+      static_iterations = cfg%static_iterations; static_splits = cfg%static_splits
       if (size(blk) > 0) then
          read (blk, nml=solver, iostat=ios, iomsg=msg)
          if (read_failed(ios, msg, where, stat, errmsg)) return
@@ -1048,6 +1054,7 @@ contains
       cfg%dt_limit = dt_limit; cfg%mass_scaling = mass_scaling
       cfg%method = method; cfg%static_increments = static_increments; cfg%compare_static = compare_static
       cfg%convergence_test = convergence_test
+      cfg%static_iterations = static_iterations; cfg%static_splits = static_splits
    end subroutine read_solver
 
    !> &initial (issue 12): the uniform initial velocity.
@@ -1237,6 +1244,14 @@ contains
          end if
          if (s%static_increments < 1) then
             errmsg = 'solver:static_increments = '//str(s%static_increments)//' must be >= 1'
+            return
+         end if
+         if (s%static_iterations < 1) then
+            errmsg = 'solver:static_iterations = '//str(s%static_iterations)//' must be >= 1'
+            return
+         end if
+         if (s%static_splits < 0 .or. s%static_splits > 20) then
+            errmsg = 'solver:static_splits = '//str(s%static_splits)//' must be between 0 and 20'
             return
          end if
          if (s%method == 'static' .and. s%compare_static) then
@@ -1740,6 +1755,7 @@ contains
                 kv('power_iterations', str(s%power_iterations))//kv('dt_limit', q(s%dt_limit))// &
                 kv('mass_scaling', str(s%mass_scaling))//kv('method', q(s%method))// &
                 kv('static_increments', str(s%static_increments))//kv('compare_static', str(s%compare_static))// &
+                kv('static_iterations', str(s%static_iterations))//kv('static_splits', str(s%static_splits))// &
                 kv('convergence_test', q(s%convergence_test))//'/'//nl
       end associate
       text = text//'&initial'//nl//kv('velocity', reals(deck%initial%velocity))//'/'//nl

@@ -24,7 +24,7 @@ module contact2d_static
    use contact2d_kkt, only: kkt_names, kkt_values, absmax
    implicit none
    private
-   public :: static_t, singular_pivot_ratio
+   public :: static_t, static_saved_t, singular_pivot_ratio
 
    !> A pivot L_jj^2 / K_jj below this marks a singular stiffness (a free rigid-body mode).
    real(wp), parameter :: singular_pivot_ratio = 1.0e-11_wp
@@ -38,6 +38,14 @@ module contact2d_static
    !> Tangential complementarity constants tried in turn (fractions of A_rr): with 1, the slip
    !> signs of the paper scene flip-flop from level 4 on; 0.1 settles in 9-14 iterations (levels 0-6).
    real(wp), parameter :: ct_tries(3) = [0.1_wp, 0.01_wp, 1.0_wp]
+
+   !> The state of an increment's start, kept so that an increment that does not settle can be
+   !> taken again from there in smaller steps (static_t%save, static_t%restore).
+   type :: static_saved_t
+      real(wp), allocatable :: u(:, :), fext(:, :), fint(:, :), fc(:, :), lambda(:), fn(:), ft(:), mu(:)
+      integer, allocatable :: state(:)
+      real(wp) :: kkt(4) = 0
+   end type static_saved_t
 
    !> The factorised, condensed problem and the state of the last increment.
    type :: static_t
@@ -68,6 +76,8 @@ module contact2d_static
       real(wp), allocatable :: fn(:), ft(:), mu(:)   !< nodal F_n, F_t and P0 mu per contact node
       real(wp) :: kkt(4) = 0               !< KKT residuals of the last increment (kkt_names)
       integer :: iterations = 0            !< PDAS iterations, all increments
+      !> active-set iterations one solve may take before the increment counts as not settled
+      integer :: max_iter = max_pdas
       integer :: outer_iterations = 0      !< threshold fixed-point iterations, all increments
       real(wp) :: time_factor = 0          !< assembly and factorisation [s]
       real(wp) :: time_condense = 0        !< Schur complement and A [s]
@@ -75,6 +85,8 @@ module contact2d_static
    contains
       procedure :: setup => static_setup
       procedure :: increment => static_increment
+      procedure :: save => static_save
+      procedure :: restore => static_restore
       procedure :: free => static_free
    end type static_t
 
@@ -437,7 +449,7 @@ contains
             ! tangential constant (docs/static.md)
             do itry = 1, size(ct_tries)
                if (itry > 1) this%state = -99
-               call pdas_solve(this%a, this%nc, cvec, lim, ct_tries(itry), max_pdas, this%state, this%lambda, &
+               call pdas_solve(this%a, this%nc, cvec, lim, ct_tries(itry), this%max_iter, this%state, this%lambda, &
                                ysol, nit, pdas_ok, stat, errmsg)
                this%iterations = this%iterations + nit
                if (stat /= 0) return
@@ -458,7 +470,8 @@ contains
             end if
             if (.not. pdas_ok) then
                converged = .false.
-               message = 'the active-set iteration cycled or did not settle in '//str(max_pdas)//' iterations'
+               message = 'the active-set iteration cycled or did not settle in '//str(this%max_iter)// &
+                         ' iterations (solver:static_iterations)'
                exit
             end if
             call nodal_forces(this, model)
@@ -665,7 +678,7 @@ contains
    !> Semismooth Newton (active-set) iteration on the Coulomb problem itself: with the current
    !> sets, the exact fixed-set solution (coulomb_sets_solve), then the sets it implies with the
    !> limits mu F_n of its own forces; until the sets repeat (ok: every condition holds) or an
-   !> earlier set comes back or max_pdas is reached (not ok; lambda unchanged).
+   !> earlier set comes back or max_iter is reached (not ok; lambda unchanged).
    subroutine coulomb_newton(this, model, cvec, nit, ok, stat, errmsg)
       type(static_t), intent(inout) :: this
       type(model_t), intent(in) :: model
@@ -681,8 +694,8 @@ contains
       errmsg = ''
       ok = .false.
       nit = 0
-      allocate (hist(this%m, max_pdas))
-      do it = 1, max_pdas
+      allocate (hist(this%m, this%max_iter))
+      do it = 1, this%max_iter
          nit = it
          hist(:, it) = this%state
          call coulomb_sets_solve(this, model, cvec, lam, y, info)
@@ -782,6 +795,39 @@ contains
       end if
       this%kkt = kkt_values(this%u, e, lam, ftk, limk, psi, this%fext, this%fc, this%fint, this%dof > 0)
    end subroutine kkt_residuals
+
+   !> Keep the state of the last increment (the start of the next one).
+   subroutine static_save(this, saved)
+      class(static_t), intent(in) :: this
+      type(static_saved_t), intent(inout) :: saved
+      saved%u = this%u
+      saved%fext = this%fext
+      saved%fint = this%fint
+      saved%fc = this%fc
+      saved%lambda = this%lambda
+      saved%fn = this%fn
+      saved%ft = this%ft
+      saved%mu = this%mu
+      saved%state = this%state
+      saved%kkt = this%kkt
+   end subroutine static_save
+
+   !> Go back to a kept state: the next increment starts from it as from the increment that
+   !> made it (warm-started sets and multipliers, friction on the displacement since it).
+   subroutine static_restore(this, saved)
+      class(static_t), intent(inout) :: this
+      type(static_saved_t), intent(in) :: saved
+      this%u = saved%u
+      this%fext = saved%fext
+      this%fint = saved%fint
+      this%fc = saved%fc
+      this%lambda = saved%lambda
+      this%fn = saved%fn
+      this%ft = saved%ft
+      this%mu = saved%mu
+      this%state = saved%state
+      this%kkt = saved%kkt
+   end subroutine static_restore
 
    subroutine static_free(this)
       class(static_t), intent(inout) :: this
