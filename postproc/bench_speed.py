@@ -12,8 +12,9 @@ For each mesh level k (13 2^k x 3 2^k elements):
      run (median of --repeats; postproc/getfem_reference.py, Tresca when it converges, else the
      frictionless variant for both codes), and the ratio explicit / static.
 Then the speed targets with PASS/MISS (docs/performance.md, "Targets not met"), and the rows of
-the table in --out/bench.json; a bench.json already there is refused before any run (one line, exit 2) unless --force, and it is
-written beside its name and moved into place (postproc/outfile.py). Timings are wall-clock on a
+the table in --out/bench.json; a bench.json already there is refused before any run (one line,
+exit 2) unless --force, and it is written beside its name and moved into place
+(postproc/outfile.py). Timings are wall-clock on a
 shared machine: medians, and ratios of two things measured side by side.
 
 More figures (each section can be chosen with --sections; issue5 is the list above):
