@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Speed benchmark of contact2d on the paper scene (issue 5): prints its figures.
+"""Speed benchmark of contact2d on the paper scene: prints its figures (docs/performance.md).
 
     /usr/bin/python3 postproc/bench_speed.py [--levels 3-6] [--repeats 3] [--out study/bench] [--force]
 
@@ -11,12 +11,13 @@ For each mesh level k (13 2^k x 3 2^k elements):
   3. the same problem solved by the GetFEM static reference on the same mesh, timed in the same
      run (median of --repeats; postproc/getfem_reference.py, Tresca when it converges, else the
      frictionless variant for both codes), and the ratio explicit / static.
-Then the targets of issue 5 with PASS/MISS, and the rows of the table in --out/bench.json; a
-bench.json already there is refused before any run (one line, exit 2) unless --force, and it is
-written beside its name and moved into place (postproc/outfile.py). Timings are wall-clock on a
+Then the speed targets with PASS/MISS (docs/performance.md, "Targets not met"), and the rows of
+the table in --out/bench.json; a bench.json already there is refused before any run (one line,
+exit 2) unless --force, and it is written beside its name and moved into place
+(postproc/outfile.py). Timings are wall-clock on a
 shared machine: medians, and ratios of two things measured side by side.
 
-Issue 13 figures (each section can be chosen with --sections):
+More figures (each section can be chosen with --sections; issue5 is the list above):
   base     ns per element-step on one thread, this binary against --base-exe (the previous
            commit built apart), interleaved runs, median ratio;
   steps    steps and wall time to the end state with the default deck, solver:dt_limit =
@@ -125,7 +126,7 @@ def general_path(exe, out, repeats, levels=(1,), base=None):
     the Hertz Gmsh meshes (inputs/hertz_cylinder_p1.nml and hertz_indenter_p1.nml at each level:
     the general path, src/element/contact2d_rows.f90) and on a built-in structured mesh of about
     as many elements (the paper deck with nx x ny set accordingly: the structured sweep), and
-    their ratio (issue 13 target: <= 1.5). With base, the Hertz runs are repeated with that
+    their ratio (target: <= 1.5). With base, the Hertz runs are repeated with that
     binary too (the previous commit), interleaved."""
     common = {"solver:t_end": 1.0, "solver:tol_residual": 1e-300, "solver:power_iterations": 0,
               "output:xdmf": False}
@@ -255,7 +256,7 @@ def section_steps(exe, out, levels, repeats, threads):
 
 
 def section_mass(exe, out, levels, factors, threads, tresca_threshold):
-    """Mass scaling on the graded Hertz meshes (issue 13): steps and wall to the end state without
+    """Mass scaling on the graded Hertz meshes: steps and wall to the end state without
     and with solver:mass_scaling = F x dt_critical (the unscaled element bound), frictionless
     (the end state is the unique static solution: it must not move beyond the tolerance) and a
     Tresca variant (contact:threshold; the path enters through the slip: the difference is
@@ -366,7 +367,7 @@ def section_static(exe, out, levels, threads):
         else:
             line += ", static n/a (this binary has no --static)"
         print(line, flush=True)
-    print("  graded Hertz mesh (issue 10): ns per element-step on the general path in the 'general' section, "
+    print("  graded Hertz mesh: ns per element-step on the general path in the 'general' section, "
           "steps with/without mass scaling on it in the 'mass' section", flush=True)
 
 
@@ -481,7 +482,7 @@ def main():
         print(f"  k={r['level']}: omega_max/omega_1 = {r['omega_ratio']:.0f}, {r['ramp_steps']} ramp steps, "
               f"{r['relax_steps']} relaxation steps, estimate {r['relax_estimate']:.0f} "
               f"(ratio {r['relax_steps'] / r['relax_estimate']:.2f})")
-    print("\ntargets (issue 5):")
+    print("\ntargets:")
     for r in rows:
         if r["level"] == 4:
             print(f"  {'PASS' if r['rate_1'] >= 1e8 else 'MISS'} >= 1e8 element-steps/s on one thread at k = 4: "

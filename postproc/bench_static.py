@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Benchmark of the static engine (issue 14) on the paper scene: prints its figures.
+"""Benchmark of the static engine on the paper scene: prints its figures (docs/static.md).
 
     /usr/bin/python3 postproc/bench_static.py [--levels 4-6] [--repeats 3] [--explicit-repeats 1]
                                               [--multiplier P1] [--out study/bench_static] [--force]
@@ -34,7 +34,7 @@ from c2drun import ROOT, find_exe, levels_or_exit, out_dir, run  # noqa: E402
 from outfile import refuse_existing  # noqa: E402
 
 PROG = "bench_static.py"
-TARGETS = {5: 0.43, 6: 1.9}     # issue 14: CHOLMOD with the contact condensed [s]; target within 2x
+TARGETS = {5: 0.43, 6: 1.9}     # CHOLMOD with the contact condensed [s]; target within 2x (docs/static.md)
 
 
 def static_times(exe, deck, out, level):

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Speed against accuracy on the paper scene (issue 5): error of the end state against wall time.
+"""Speed against accuracy on the paper scene: error of the end state against wall time.
 
     /usr/bin/python3 postproc/speed_accuracy.py [--levels 1-5] [--reference-dir study/paper]
                                                [--out study/speed_accuracy] [--threads 1] [--reuse] [--force]

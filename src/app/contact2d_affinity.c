@@ -1,5 +1,5 @@
-/* Spread the team over the CPUs once (issue 13, docs/performance.md "Where a two-thread step
- * goes"): on the project's VM a thread woken from sleep runs on the waker's CPU and stays there
+/* Spread the team over the CPUs once (docs/performance.md "Threads that never
+ * hurt"): on the project's VM a thread woken from sleep runs on the waker's CPU and stays there
  * while both threads are busy, so a team formed again after a stretch on one thread shared one
  * core. Each thread moves itself to a CPU of its own (the k-th CPU allowed to it), then allows
  * all of its CPUs again: a nudge, not a binding, so the scheduler can still move it away from
@@ -33,7 +33,7 @@ int contact2d_affinity_nudge(int k)
    return sched_setaffinity(0, sizeof all, &all) != 0;
 }
 
-/* How busy the other processes keep the CPUs (issue 13, docs/performance.md "TUNER"): the
+/* How busy the other processes keep the CPUs (docs/performance.md "Threads that never hurt"): the
  * seconds the CPUs allowed to this process have been idle since boot (/proc/stat: idle + iowait
  * of each allowed CPU, kept by the kernel to the tick, 1/CLK_TCK s), the CPU seconds of this
  * process (getrusage: all its threads, to the microsecond), a monotonic clock in seconds and

@@ -1,6 +1,6 @@
 !> contact2d: the launcher. Sets a bounded spin-then-sleep OpenMP wait unless the user chose one,
 !> then starts the program itself, contact2d-solver, from the same directory with the same
-!> arguments (issue 13, docs/performance.md "Threads that never hurt" and "Start-up").
+!> arguments (docs/performance.md "Threads that never hurt" and "Start-up").
 !>
 !> libgomp's default wait spins for 300 000 pause instructions (about 12 ms on this project's
 !> machine) before it sleeps: with another process on the cores, a team of 2 threads then took

@@ -1,5 +1,5 @@
-!> The thread tuner's decisions (issue 13, docs/performance.md "Threads that never hurt" and
-!> "TUNER"): which thread count runs the next chunk of steps, one thread or the full team, from
+!> The thread tuner's decisions (docs/performance.md "Threads that never hurt"):
+!> which thread count runs the next chunk of steps, one thread or the full team, from
 !> the seconds per step of the chunks so far and, where the system tells it, how many CPUs other
 !> processes kept busy. Logic only (no OpenMP, no clock, no I/O): contact2d_threads applies the
 !> count and measures; tests/app feeds synthetic chunk times.

@@ -1,4 +1,4 @@
-!> Threads that never hurt (issue 13, docs/performance.md "Threads" and "TUNER"): the run
+!> Threads that never hurt (docs/performance.md "Threads that never hurt"): the run
 !> measures its own time per step with one thread and with the full team and keeps the faster,
 !> probing the other now and then, so a busy core (another process) sends it to one thread and
 !> an idle machine back to the team. It also reads how busy other processes keep the CPUs

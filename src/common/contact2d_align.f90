@@ -1,4 +1,4 @@
-!> Where an array element sits in its 64-byte cache line (issue 13, docs/performance.md
+!> Where an array element sits in its 64-byte cache line (docs/performance.md
 !> "Aligned blocks"). A vector load of eight reals that starts on a line reads one line, one
 !> that starts elsewhere two; the integrator keeps its per-node arrays on lines, and the sweep
 !> starts its blocks where a row of them starts a line and places its row-sized arrays alike.

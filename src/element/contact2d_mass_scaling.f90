@@ -1,4 +1,4 @@
-!> Mass scaling for quasi-static runs (issue 13, docs/deck.md solver:mass_scaling): fictitious
+!> Mass scaling for quasi-static runs (docs/deck.md solver:mass_scaling): fictitious
 !> nodal masses so that every node reaches a target stable time step.
 !>
 !> The bound used is Gershgorin's on M^-1 K, row by row: omega_max^2 <= max over dofs d of

@@ -1,4 +1,4 @@
-!> The sweep of contact2d_sweep on a general (Gmsh) mesh (issue 13, docs/performance.md
+!> The sweep of contact2d_sweep on a general (Gmsh) mesh (docs/performance.md
 !> "general path"): chunk by chunk of block rows, the internal force K u^n from the block rows
 !> of contact2d_stiffness, then, while the chunk is in cache, the predictor v* (written into v),
 !> u~ and the energy sums of v* (the quantities of contact2d_sweep's module header).

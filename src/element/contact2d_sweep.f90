@@ -1,4 +1,4 @@
-!> One sweep over memory per explicit step (issue 13, docs/performance.md): row by row, the
+!> One sweep over memory per explicit step (docs/performance.md): row by row, the
 !> internal force K u^n, the predictor of this step in velocity form and the energy sums of the
 !> predicted velocity, so that every node is loaded once and u^(n-1) is not kept at all.
 !>
@@ -290,8 +290,8 @@ contains
       ! at most nscr threads: each uses its own scratch rows (the bits do not depend on it).
       ! Static rows: each thread keeps the same block of rows every step, so they stay in its own
       ! cache (with dynamic sharing rows moved between cores: one thread took 0.67 s for half the
-      ! rows where one thread alone took 0.58 s for all, docs/performance.md "Where a two-thread
-      ! step goes")
+      ! rows where one thread alone took 0.58 s for all, docs/performance.md "Tried and
+      ! not kept")
       ! Each inside row forms the sum and difference rows of the next one in its own loop (scratch
       ! slots 3 - k, 4 - k); jmade is the row they were formed for (one thread's rows are
       ! consecutive: only its first inside row forms its own)

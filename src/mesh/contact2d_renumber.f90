@@ -1,4 +1,4 @@
-!> Node renumbering of a general (Gmsh) mesh at reading (issue 13, docs/performance.md "The
+!> Node renumbering of a general (Gmsh) mesh at reading (docs/performance.md "The
 !> general (Gmsh) path"): reverse Cuthill-McKee on the graph of nodes that share an element, so
 !> that the block rows of K (row r is node r, contact2d_rows) read columns close to their own
 !> row. Gmsh numbers the nodes of each refinement after all the older ones, so without it an
@@ -124,8 +124,8 @@ contains
    !> about the order's bandwidth of their places; a waiting pair or node does not: it joins the
    !> next left-over one wherever that is (on the Hertz cylinder the bandwidth grows from 120 to
    !> 494 at level 1 and from 240 to 1740 at level 2, and such groups' blocks that share no
-   !> column slot go to contact2d_rows' remainder: docs/performance.md "GENERAL5"). Elements
-   !> have four distinct nodes (contact2d_gmsh refuses others).
+   !> column slot go to contact2d_rows' remainder: docs/performance.md "The general (Gmsh)
+   !> path"). Elements have four distinct nodes (contact2d_gmsh refuses others).
    subroutine group_order(conn, nnode, perm)
       integer, intent(in) :: conn(:, :)   !< (4, nel) element nodes
       integer, intent(in) :: nnode

@@ -1,4 +1,4 @@
-!> The static engine (issue 14, docs/static.md): an exact solve of the paper's saddle-point
+!> The static engine (docs/static.md): an exact solve of the paper's saddle-point
 !> problem (13) on the model's mesh, multipliers and friction law, with the contact condensed
 !> onto Gamma_c.
 !>

@@ -9,7 +9,7 @@
 !>   4. v^(n+1/2) = (u^(n+1) - u^n)/dt, energies of SPEC section 6.
 !> Steps 1-2 and the energy sums are one sweep over memory (contact2d_sweep), which writes v*
 !> as the new velocity; step 4 then only corrects the dofs that step 2's loads, the prescribed
-!> values or step 3 moved (docs/performance.md, issue 13).
+!> values or step 3 moved (docs/performance.md).
 !> The step does no I/O and no allocation.
 module contact2d_explicit
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
@@ -101,7 +101,7 @@ module contact2d_explicit
       real(wp) :: external_work = 0        !< loads and Dirichlet reactions
       real(wp) :: work_in = 0              !< sum of |external work increments|
       real(wp) :: damping_dissipation = 0
-      real(wp) :: initial_kinetic = 0      !< 1/2 v^(-1/2) M v^(-1/2), energy put in at t = 0 (issue 12)
+      real(wp) :: initial_kinetic = 0      !< 1/2 v^(-1/2) M v^(-1/2), energy put in at t = 0
       !> sum m (v^(n-1/2))^2: twice the kinetic energy of the last step, formed from v by the
       !> next advance when vsum_stale (set it when v is changed between advance calls)
       real(wp) :: vsum = 0
@@ -111,7 +111,7 @@ module contact2d_explicit
       !> for a mode that changes sign every step (the one that grows when dt is too long)
       real(wp) :: alternating = 0
       real(wp) :: alternating_energy = 0   !< 1/2 sum m (v^(n+1/2) - v^(n-1/2))^2 [mJ]
-      ! growing-mode guard (issue 13, docs/deck.md solver:dt_limit)
+      ! growing-mode guard (docs/deck.md solver:dt_limit)
       logical :: guard = .false.           !< watch for a growing mode
       logical :: growing = .false.         !< a growing mode was detected (advance returned)
       real(wp) :: guard_after = 0          !< the energy test starts at this time (end of loading) [s]
@@ -776,7 +776,7 @@ contains
    end subroutine residual_listed
 
    !> |E_kin0 + W_ext - (E_kin + E_strain + D_friction + D_damping + W_normal)| / max(terms),
-   !> E_kin0 the initial kinetic energy (issue 12).
+   !> E_kin0 the initial kinetic energy (docs/deck.md &initial).
    real(wp) function explicit_balance_error(this, friction, normal_work) result(err)
       class(explicit_t), intent(in) :: this
       real(wp), intent(in) :: friction, normal_work
