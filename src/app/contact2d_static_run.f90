@@ -23,7 +23,7 @@ contains
 
    !> Run the static engine and write `path`. code: 0 converged; 1 refused before anything was
    !> written (singular stiffness, model not supported); 2 written but not converged or failed.
-   !> Output safety (issue 9): the driver passes the temporary file as `path`, the sidecar's
+   !> Output safety (docs/output.md): the driver passes the temporary file as `path`, the sidecar's
    !> temporary name as `sidecar` and the final name as `target`; `written` tells it whether the
    !> file was finished (then it is moved into place), `opened` whether it was created at all.
    !> `replacing`: the target exists and --force replaces it; a run that does not reach its end

@@ -29,7 +29,7 @@ contains
 
    !> limit_i = mu_i F_n,i (docs/friction.md, equation (C1)); F_n,i < 0 cannot occur (P1 max(0, .),
    !> P0 D mu with mu >= 0 and D >= 0), max() only guards round-off. The limit follows F_n,i
-   !> itself (a node with F_n,i = 0 carries none, issue 11), whatever the contact measure says.
+   !> itself (a node with F_n,i = 0 carries none), whatever the contact measure says.
    pure subroutine coulomb_law_limits(this, fn, closed, limit)
       class(coulomb_law_t), intent(in) :: this
       real(wp), intent(in) :: fn(:)

@@ -1,4 +1,4 @@
-!> The initial state of a run (issue 12, docs/deck.md &initial): a uniform initial velocity.
+!> The initial state of a run (docs/deck.md &initial): a uniform initial velocity.
 !>
 !> Central differences need v^(-1/2). The start-up is v^(-1/2) = v^0 - (dt/2) a^0 with
 !> a^0 = M^-1 (f_ext(0) - K u^0), and a^0 = 0 here: u^0 = 0 and every load curve starts at 0
