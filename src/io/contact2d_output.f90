@@ -43,6 +43,9 @@ module contact2d_output
       logical :: xdmf = .true.
       character(len=:), allocatable :: xmf_path   !< where the sidecar is written
       character(len=:), allocatable :: h5_name    !< the HDF5 file name the sidecar refers to
+      integer :: nsnap = 0                       !< /fields/<step> groups written so far
+      integer(i8), allocatable :: snap_step(:)   !< their steps, in the order written
+      real(wp), allocatable :: snap_time(:)      !< their times [s] (the sidecar's time series)
    contains
       procedure :: open => output_open
       procedure :: sample => output_sample
@@ -74,6 +77,10 @@ contains
       if (present(sidecar)) this%xmf_path = sidecar
       this%h5_name = path
       if (present(target)) this%h5_name = target
+      ! at most one snapshot per output:snapshot_times entry (times in one step share one): the
+      ! list the sidecar's time series is written from, sized here, not in the step loop
+      this%nsnap = 0
+      allocate (this%snap_step(deck%output%nsnapshot), this%snap_time(deck%output%nsnapshot))
       call this%file%create(path, overwrite)
       root = this%file%id
       call this%file%attr(root, 'program', program_name)
@@ -108,6 +115,8 @@ contains
          associate (c => model%contact)
             g = this%file%group(root, 'contact')
             call this%file%dataset(g, 'nodes', model%mesh%file_id(c%node), '1')
+            ! the contact nodes' coordinates, the geometry of the sidecar's polyline grids
+            call this%file%dataset(g, 'coordinates', model%mesh%x(:, c%node), 'mm')
             call this%file%dataset(g, 'abscissa', c%abscissa, 'mm')
             call this%file%dataset(g, 'weight', c%weight, 'mm')
             call this%file%dataset(g, 'gap', c%gap, 'mm')
@@ -160,12 +169,14 @@ contains
       end if
    end subroutine output_sample
 
-   !> /fields/<step>: a snapshot of the displacement (and contact forces) at this step.
+   !> /fields/<step>: a snapshot of the displacement (and the contact fields) at this step.
    subroutine output_snapshot(this, solver, model)
       class(output_t), intent(inout) :: this
       type(explicit_t), intent(in) :: solver
       type(model_t), intent(in) :: model
       integer(hid_t) :: fields, g
+      real(wp) :: pressure(model%contact%nc), shear(model%contact%nc)
+      integer :: status(model%contact%nc), info
       if (this%fields < 0) this%fields = this%file%group(this%file%id, 'fields')
       fields = this%fields
       g = this%file%group(fields, str(solver%step))
@@ -175,9 +186,20 @@ contains
       if (model%contact%active) then
          call this%file%dataset(g, 'contact_normal_force', model%contact%fn, 'N')
          call this%file%dataset(g, 'contact_tangential_force', model%contact%ft, 'N')
+         ! the multiplier fields and statuses as /final/contact has them (SPEC section 3)
+         call model%contact%fields(pressure, shear, info)
+         call model%contact%status(status)
+         call this%file%dataset(g, 'contact_pressure', pressure, 'MPa')
+         call this%file%dataset(g, 'contact_shear', shear, 'MPa')
+         call this%file%dataset(g, 'contact_status', status, '0 separated, 1 stick, 2 slip')
       end if
       call this%file%close_group(g)
       call this%file%flush()
+      if (this%nsnap < size(this%snap_step)) then
+         this%nsnap = this%nsnap + 1
+         this%snap_step(this%nsnap) = solver%step
+         this%snap_time(this%nsnap) = solver%time
+      end if
    end subroutine output_snapshot
 
    !> Append the buffered samples and flush the file.
@@ -247,7 +269,8 @@ contains
          errmsg = this%file%errmsg
          return
       end if
-      if (this%xdmf) call write_xdmf(this%xmf_path, this%h5_name, model, stat, errmsg)
+      if (this%xdmf) call write_xdmf(this%xmf_path, this%h5_name, model, this%snap_step(1:this%nsnap), &
+                                     this%snap_time(1:this%nsnap), stat, errmsg)
    end subroutine output_finish
 
    !> /final/contact: nodal forces, multiplier fields and status (SPEC section 8).
@@ -271,42 +294,90 @@ contains
       end associate
    end subroutine write_final_contact
 
-   !> <output>.xmf next to the HDF5 file: mesh, final displacement, velocity and stress.
-   subroutine write_xdmf(xmf, h5path, model, stat, errmsg)
+   !> <output>.xmf next to the HDF5 file (docs/output.md, "XDMF sidecar"), every array a reference
+   !> into the HDF5 file: the mesh with the final displacement, velocity and stress; the contact
+   !> boundary as a polyline through the contact nodes with the final contact fields; and, with
+   !> snapshots, two XDMF temporal collections (one grid per /fields/<step> at its time): the mesh
+   !> with the displacement, the polyline with the contact fields.
+   subroutine write_xdmf(xmf, h5path, model, snap_step, snap_time, stat, errmsg)
       character(len=*), intent(in) :: xmf, h5path
       type(model_t), intent(in) :: model
+      integer(i8), intent(in) :: snap_step(:)   !< the /fields/<step> groups, in time order
+      real(wp), intent(in) :: snap_time(:)      !< their times [s]
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      character(len=:), allocatable :: base, nn, ne, text
-      integer :: slash
+      character(len=:), allocatable :: base, nn, ne, nc, nseg, seg, text, ind, field
+      logical :: has_line   !< a contact boundary of >= 2 nodes: the polyline grids
+      integer :: slash, i, k
 
       slash = index(h5path, '/', back=.true.)
       base = h5path(slash + 1:)
       nn = str(model%mesh%nnode)
       ne = str(model%mesh%nel)
+      ! the contact polyline: segments between consecutive contact nodes (by abscissa), indices
+      ! into /contact/coordinates (0-based, as XDMF wants)
+      has_line = model%contact%active .and. model%contact%nc >= 2
+      nc = str(model%contact%nc)
+      nseg = str(model%contact%nc - 1)
+      seg = ''
+      if (has_line) then
+         do i = 0, model%contact%nc - 2
+            seg = seg//' '//str(i)//' '//str(i + 1)
+         end do
+         seg = seg(2:)
+      end if
       text = ''
+      ind = ''
       call put('<?xml version="1.0" ?>')
       call put('<Xdmf Version="2.0">')
       call put(' <Domain>')
-      call put('  <Grid Name="final" GridType="Uniform">')
-      call put('   <Topology TopologyType="Quadrilateral" NumberOfElements="'//ne//'">')
-      ! connectivity is 1-based in the file; XDMF wants 0-based
-      call put('    <DataItem ItemType="Function" Function="$0 - 1" Dimensions="'//ne//' 4">')
-      call put('     <DataItem Dimensions="'//ne//' 4" NumberType="Int" Format="HDF">'// &
-         base//':/mesh/connectivity</DataItem>')
-      call put('    </DataItem>')
-      call put('   </Topology>')
-      call put('   <Geometry GeometryType="XY">')
-      call put('    <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
-         base//':/mesh/coordinates</DataItem>')
-      call put('   </Geometry>')
+      ind = '  '
+      call put('<Grid Name="final" GridType="Uniform">')
+      call mesh()
       call vector('displacement', '/final/displacement')
       call vector('velocity', '/final/velocity')
-      call put('   <Attribute Name="stress_xx_yy_xy" AttributeType="Matrix" Center="Cell">')
-      call put('    <DataItem Dimensions="'//ne//' 3" NumberType="Float" Precision="8" Format="HDF">'// &
+      call put(' <Attribute Name="stress_xx_yy_xy" AttributeType="Matrix" Center="Cell">')
+      call put('  <DataItem Dimensions="'//ne//' 3" NumberType="Float" Precision="8" Format="HDF">'// &
          base//':/final/stress</DataItem>')
-      call put('   </Attribute>')
-      call put('  </Grid>')
+      call put(' </Attribute>')
+      call put('</Grid>')
+      if (has_line) then
+         call put('<Grid Name="contact_final" GridType="Uniform">')
+         call polyline()
+         call contact_fields('/final/contact/pressure', '/final/contact/shear', '/final/contact/status', &
+                             '/final/contact/normal_force', '/final/contact/tangential_force')
+         call put('</Grid>')
+      end if
+      if (size(snap_step) > 0) then
+         call put('<Grid Name="snapshots" GridType="Collection" CollectionType="Temporal">')
+         do k = 1, size(snap_step)
+            field = '/fields/'//str(snap_step(k))
+            call put(' <Grid Name="step_'//str(snap_step(k))//'" GridType="Uniform">')
+            ind = '    '
+            call put('<Time Value="'//str(snap_time(k))//'"/>')
+            call mesh()
+            call vector('displacement', field//'/displacement')
+            ind = '  '
+            call put(' </Grid>')
+         end do
+         call put('</Grid>')
+         if (has_line) then
+            call put('<Grid Name="contact_snapshots" GridType="Collection" CollectionType="Temporal">')
+            do k = 1, size(snap_step)
+               field = '/fields/'//str(snap_step(k))
+               call put(' <Grid Name="contact_step_'//str(snap_step(k))//'" GridType="Uniform">')
+               ind = '    '
+               call put('<Time Value="'//str(snap_time(k))//'"/>')
+               call polyline()
+               call contact_fields(field//'/contact_pressure', field//'/contact_shear', field//'/contact_status', &
+                                   field//'/contact_normal_force', field//'/contact_tangential_force')
+               ind = '  '
+               call put(' </Grid>')
+            end do
+            call put('</Grid>')
+         end if
+      end if
+      ind = ''
       call put(' </Domain>')
       call put('</Xdmf>')
       ! written whole, every write, fsync and close checked (a full disk is an error, not an
@@ -317,25 +388,70 @@ contains
    contains
       subroutine put(line)
          character(len=*), intent(in) :: line
-         text = text//line//new_line('a')
+         text = text//ind//line//new_line('a')
       end subroutine put
+      !> the quadrilateral mesh: topology and reference geometry
+      subroutine mesh()
+         call put(' <Topology TopologyType="Quadrilateral" NumberOfElements="'//ne//'">')
+         ! connectivity is 1-based in the file; XDMF wants 0-based
+         call put('  <DataItem ItemType="Function" Function="$0 - 1" Dimensions="'//ne//' 4">')
+         call put('   <DataItem Dimensions="'//ne//' 4" NumberType="Int" Format="HDF">'// &
+            base//':/mesh/connectivity</DataItem>')
+         call put('  </DataItem>')
+         call put(' </Topology>')
+         call put(' <Geometry GeometryType="XY">')
+         call put('  <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
+            base//':/mesh/coordinates</DataItem>')
+         call put(' </Geometry>')
+      end subroutine mesh
+      !> the contact boundary: nc - 1 two-node segments through the contact nodes' coordinates
+      subroutine polyline()
+         call put(' <Topology TopologyType="Polyline" NodesPerElement="2" NumberOfElements="'//nseg//'">')
+         call put('  <DataItem Dimensions="'//nseg//' 2" NumberType="Int" Format="XML">'//seg//'</DataItem>')
+         call put(' </Topology>')
+         call put(' <Geometry GeometryType="XY">')
+         call put('  <DataItem Dimensions="'//nc//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
+            base//':/contact/coordinates</DataItem>')
+         call put(' </Geometry>')
+      end subroutine polyline
+      !> the contact fields on the polyline's nodes, and the initial gap
+      subroutine contact_fields(pressure, shear, status, fn, ft)
+         character(len=*), intent(in) :: pressure, shear, status, fn, ft
+         call scalar('pressure', pressure, 'Float')
+         call scalar('shear', shear, 'Float')
+         call scalar('status', status, 'Int')
+         call scalar('normal_force', fn, 'Float')
+         call scalar('tangential_force', ft, 'Float')
+         call scalar('gap', '/contact/gap', 'Float')
+      end subroutine contact_fields
+      subroutine scalar(name, path, kind)
+         character(len=*), intent(in) :: name, path, kind
+         call put(' <Attribute Name="'//name//'" AttributeType="Scalar" Center="Node">')
+         if (kind == 'Int') then
+            call put('  <DataItem Dimensions="'//nc//'" NumberType="Int" Format="HDF">'//base//':'//path//'</DataItem>')
+         else
+            call put('  <DataItem Dimensions="'//nc//'" NumberType="Float" Precision="8" Format="HDF">'// &
+               base//':'//path//'</DataItem>')
+         end if
+         call put(' </Attribute>')
+      end subroutine scalar
       subroutine vector(name, path)
          character(len=*), intent(in) :: name, path
          ! pad (x, y) with a zero z so that ParaView's Warp By Vector works
-         call put('   <Attribute Name="'//name//'" AttributeType="Vector" Center="Node">')
-         call put('    <DataItem ItemType="Function" Function="JOIN($0, $1, 0*$1)" Dimensions="'//nn//' 3">')
-         call put('     <DataItem ItemType="HyperSlab" Dimensions="'//nn//' 1">')
-         call put('      <DataItem Dimensions="3 2" Format="XML">0 0 1 1 '//nn//' 1</DataItem>')
-         call put('      <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
+         call put(' <Attribute Name="'//name//'" AttributeType="Vector" Center="Node">')
+         call put('  <DataItem ItemType="Function" Function="JOIN($0, $1, 0*$1)" Dimensions="'//nn//' 3">')
+         call put('   <DataItem ItemType="HyperSlab" Dimensions="'//nn//' 1">')
+         call put('    <DataItem Dimensions="3 2" Format="XML">0 0 1 1 '//nn//' 1</DataItem>')
+         call put('    <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
             base//':'//path//'</DataItem>')
-         call put('     </DataItem>')
-         call put('     <DataItem ItemType="HyperSlab" Dimensions="'//nn//' 1">')
-         call put('      <DataItem Dimensions="3 2" Format="XML">0 1 1 1 '//nn//' 1</DataItem>')
-         call put('      <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
+         call put('   </DataItem>')
+         call put('   <DataItem ItemType="HyperSlab" Dimensions="'//nn//' 1">')
+         call put('    <DataItem Dimensions="3 2" Format="XML">0 1 1 1 '//nn//' 1</DataItem>')
+         call put('    <DataItem Dimensions="'//nn//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
             base//':'//path//'</DataItem>')
-         call put('     </DataItem>')
-         call put('    </DataItem>')
-         call put('   </Attribute>')
+         call put('   </DataItem>')
+         call put('  </DataItem>')
+         call put(' </Attribute>')
       end subroutine vector
    end subroutine write_xdmf
 end module contact2d_output

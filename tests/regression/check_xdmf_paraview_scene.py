@@ -5,7 +5,7 @@
 Runs the deck, reads <out>.xmf with ParaView's XDMF reader and checks: the numbers of points and
 quadrilaterals the program reported on its 'mesh from <file>: N Q1 elements, M nodes' line, a
 3-component displacement with a non-zero range, the element stress array, and that Warp By
-Vector moves the bounds. (Issue 10; the structured-mesh check is check_xdmf_paraview.py.)
+Vector moves the bounds (all on the sidecar's `final` block, xdmf_blocks.py). (Issue 10; the structured-mesh check is check_xdmf_paraview.py.)
 Not run where ParaView is not installed.
 """
 import os
@@ -14,6 +14,8 @@ import subprocess
 import sys
 
 from paraview.simple import WarpByVector, XDMFReader, servermanager
+
+from xdmf_blocks import block
 
 exe, deck, work = sys.argv[1:4]
 os.makedirs(work, exist_ok=True)
@@ -35,7 +37,7 @@ if m is None:
 nel, nnode = int(m.group(1)), int(m.group(2))
 reader = XDMFReader(FileNames=[os.path.join(work, "out.xmf")])
 reader.UpdatePipeline()
-grid = servermanager.Fetch(reader)
+grid = block(servermanager.Fetch(reader), "final")
 check("points", grid.GetNumberOfPoints() == nnode, (grid.GetNumberOfPoints(), nnode))
 check("cells", grid.GetNumberOfCells() == nel, (grid.GetNumberOfCells(), nel))
 check("cells are quadrilaterals (VTK type 9)", grid.GetCellType(0) == 9, grid.GetCellType(0))
@@ -48,6 +50,6 @@ check("stress array present", grid.GetCellData().GetArray("stress_xx_yy_xy") is 
 b0 = grid.GetBounds()
 warp = WarpByVector(Input=reader, Vectors=["POINTS", "displacement"], ScaleFactor=1.0e3 / max(hi, 1e-300))
 warp.UpdatePipeline()
-b1 = servermanager.Fetch(warp).GetBounds()
+b1 = block(servermanager.Fetch(warp), "final").GetBounds()
 check("Warp By Vector moves the bounds", any(abs(a - b) > 1e-9 for a, b in zip(b0, b1)), (b0, b1))
 sys.exit(1 if failures else 0)
