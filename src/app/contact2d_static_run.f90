@@ -139,6 +139,8 @@ contains
          state%time = t
          state%kinetic = 0
          state%strain = 0.5_wp*sum(st%u*st%fint)
+         state%strain_step = state%strain   ! a state at rest: the physical energies are these
+         state%kinetic_step = 0
          ! work of the loads and reactions: trapezoid over the increment (exact when the increment
          ! is linear; a diagnostic otherwise, see docs/static.md)
          ! (reactions live on the prescribed dofs, tractions on the free ones)
