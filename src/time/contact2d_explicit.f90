@@ -300,8 +300,9 @@ contains
          this%strain = 0.5_wp*sum(this%u*this%fint)
       end if
       ! the physical strain energy at t_n, once per call (not per step): after the swap unew
-      ! holds u^n and fint = K u^n at every dof (the last step of a call is full)
-      this%strain_step = 0.5_wp*sum(this%unew*this%fint)
+      ! holds u^n and fint = K u^n at every dof (the last step of a call is full); not after a
+      ! blow-up (the values may overflow, which traps in Debug builds, and mean nothing)
+      if (.not. this%blown_up) this%strain_step = 0.5_wp*sum(this%unew*this%fint)
    end subroutine explicit_advance
 
    !> The dofs whose u~ is changed after the sweep: loaded, prescribed and contact-node dofs,
