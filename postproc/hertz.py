@@ -1,13 +1,14 @@
 """Hertz measures of a contact2d run of inputs/hertz_*.nml (half models, symmetry on x = 0).
 
     from hertz import measure
-    m = measure("hertz_indenter_p1.h5")   # dict: P, a, p0, p0_fe, a_fe, h_edge, l2, l2_rel, ...
+    m = measure("hertz_indenter_p1.h5")   # dict: P, a, p0, p0_fe, a_fe, h_edge, l2, l2_rel, p_min, ...
 
 With the run's own total normal force P (per unit thickness, twice the half model's sum):
     E* = E / (1 - nu^2),  a = sqrt(4 P R / (pi E*)),  p0 = 2 P / (pi a),  p(x) = p0 sqrt(1 - x^2/a^2).
 The contact pressure is the program's multiplier field (/final/contact/pressure): P1 per node
 (piecewise linear along Gamma_c), P0 per dual cell (constant between the midpoints of the
-adjacent segments). Its L2 error on Gamma_c is integrated segment by segment with 64 midpoint
+adjacent segments); p_min is its most tensile value (P1 only: the tail of M_c^-1 beyond the
+contact zone, docs/geometry.md), nonzero_separated the separated nodes where |p| > 1e-8 p0. Its L2 error on Gamma_c is integrated segment by segment with 64 midpoint
 samples per segment against the exact p at the horizontal coordinate x of each sample.
 Only numpy and h5py.
 """
@@ -82,7 +83,8 @@ def measure(path):
         w = seg[i] / 64
         err2 += float(np.sum((ph - pe) ** 2) * w)
         ref2 += float(np.sum(pe ** 2) * w)
-    return dict(P=P, R=R, a=a, p0=p0, p0_fe=float(p[0]), a_fe=a_fe, h_edge=h_edge,
+    return dict(P=P, R=R, a=a, p0=p0, p0_fe=float(p[0]), a_fe=a_fe, h_edge=h_edge, p_min=float(p.min()),
+                nonzero_separated=int(np.count_nonzero((status == 0) & (np.abs(p) > 1e-8 * p0))),
                 h_min=float(seg.min()), l2=np.sqrt(err2), l2_rel=np.sqrt(err2 / ref2),
                 converged=conv, multiplier=mult, xs=xs, p=p, nel=nel)
 

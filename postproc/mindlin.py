@@ -10,9 +10,12 @@ With the run's own P = sum F_n,i and Q = sum F_t,i (per unit thickness; t = +x o
     c = a sqrt(1 - Q / (mu P))                              (Cattaneo-Mindlin stick half-width)
     q(x) = mu p0 (sqrt(1 - x^2/a^2) - (c/a) sqrt(1 - x^2/c^2))   (shear; mu p(x) in the slip zones)
 Measured:
-  - the stick zone: the contact nodes of status 1 (stick) form one run of consecutive nodes; its
-    ends are put midway between its outermost stick nodes and their slip / separated neighbours:
-    c_fe = half its length, e_fe = its centre (the Cattaneo-Mindlin zone is centred, e = 0);
+  - the stick zone from the traction ratio (c_ratio, e_ratio): the nodes in contact with
+    |F_t,i| < 0.99 mu F_n,i (STICK_RATIO) form one run of consecutive nodes; its ends are where
+    the ratio, linear between nodes, crosses 0.99: c = half its length, e = its centre (the
+    Cattaneo-Mindlin zone is centred, e = 0). The same from the status labels (c_fe, e_fe):
+    status 1 (stick) means below the limit by 1e-8 only, and nodes at 0.999 of it count as stick,
+    so that width is not a converged quantity; the ratio's is (docs/friction.md 9.2);
   - nodal tractions F_i / w_i (w_i: /contact/weight; P0: F_n = D^T mu_n, the nodal forces) against
     p(x_i) and q(x_i): largest and root-mean-square differences over the nodes with |x| < a,
     relative to mu p0 (shear) and p0 (pressure).
@@ -49,12 +52,55 @@ def stick_zone(xc, status):
     return min(left, right), max(left, right), int(idx.size), one_run
 
 
+#: a node sticks by the traction ratio when |F_t,i| < STICK_RATIO mu F_n,i (stick_zone_ratio)
+STICK_RATIO = 0.99
+
+
+def traction_ratio(fn, ft, mu):
+    """|F_t,i| / (mu F_n,i) at the nodes with F_n,i > 0, NaN elsewhere."""
+    ok = fn > 0
+    out = np.full(fn.shape, np.nan)
+    out[ok] = np.abs(ft[ok]) / (mu * fn[ok])
+    return out
+
+
+def stick_zone_ratio(xc, fn, ft, mu, threshold=STICK_RATIO):
+    """(left end, right end, number of nodes, one run?) of the stick zone from the traction ratio:
+    the nodes in contact with |F_t,i|/(mu F_n,i) < threshold, its ends where the ratio, linear
+    between two nodes, crosses the threshold (midway when the neighbour carries no force).
+
+    The status labels call a node slip only at the limit to 1e-8 (SPEC 3), so a node at 0.999 of
+    it is 'stick' though it slides in all but name; where the edge of the labelled zone falls
+    then depends on how close to the limit the relaxation stopped. The ratio crosses the threshold
+    at a point that converges with the mesh."""
+    r = traction_ratio(fn, ft, mu)
+    idx = np.nonzero(np.isfinite(r) & (r < threshold))[0]
+    if idx.size == 0:
+        return np.nan, np.nan, 0, False
+    one_run = bool(np.all(np.diff(idx) == 1))
+
+    def end(i, j):
+        if j < 0 or j >= xc.size:
+            return xc[i]
+        if not np.isfinite(r[j]) or r[j] <= r[i]:
+            return 0.5 * (xc[i] + xc[j])
+        return xc[i] + (threshold - r[i]) / (r[j] - r[i]) * (xc[j] - xc[i])
+
+    i0, i1 = idx.min(), idx.max()
+    left, right = end(i0, i0 - 1), end(i1, i1 + 1)
+    return min(left, right), max(left, right), int(idx.size), one_run
+
+
 def _state(xc, w, fn, ft, status, mu, P, Q, R, E, nu):
     a, p0 = cm.hertz(P, R, E, nu)
     ratio = Q / (mu * P)
     c = cm.stick_half_width(a, Q, mu, P) if 0 <= ratio <= 1 else np.nan
     left, right, nstick, one_run = stick_zone(xc, status)
     c_fe, e_fe = 0.5 * (right - left), 0.5 * (right + left)
+    rleft, rright, nstick_r, one_run_r = stick_zone_ratio(xc, fn, ft, mu)
+    c_r, e_r = 0.5 * (rright - rleft), 0.5 * (rright + rleft)
+    inside_c = fn > 0
+    h = float(np.median(np.diff(xc)[inside_c[:-1] & inside_c[1:]])) if np.count_nonzero(inside_c) > 1 else np.nan
     inside = np.abs(xc) < a
     p_fe, q_fe = fn / w, ft / w
     p_ex = cm.pressure(xc, a, p0)
@@ -63,6 +109,8 @@ def _state(xc, w, fn, ft, status, mu, P, Q, R, E, nu):
     slip = status == 2
     return dict(P=P, Q=Q, ratio=ratio, a=a, p0=p0, c=c, c_over_a=c / a, c_fe=c_fe, e_fe=e_fe,
                 c_fe_over_a=c_fe / a, e_fe_over_a=e_fe / a, nstick=nstick, stick_one_run=one_run,
+                c_ratio_over_a=c_r / a, e_ratio_over_a=e_r / a, nstick_ratio=nstick_r, stick_ratio_one_run=one_run_r,
+                h_over_a=h / a, traction_ratio=traction_ratio(fn, ft, mu),
                 nslip_trailing=int(np.count_nonzero(slip & (xc < e_fe))),
                 nslip_leading=int(np.count_nonzero(slip & (xc > e_fe))),
                 shear_max=float(np.abs(dq).max()), shear_rms=float(np.sqrt(np.mean(dq ** 2))),
@@ -114,18 +162,22 @@ def report(m):
              "  P = %.6g N/mm, Q = %.6g N/mm, Q/(mu P) = %.4f; reaction of the flat side (%.6g, %.6g)"
              % (m["P"], m["Q"], m["ratio"], m["reaction"][0], m["reaction"][1]),
              "  Hertz a = %.4f mm, p0 = %.1f MPa; Cattaneo-Mindlin c/a = %.3f" % (m["a"], m["p0"], m["c_over_a"]),
-             "  measured stick zone: %d nodes, c_fe/a = %.3f (difference %+.3f), centre e/a = %+.3f; slip nodes "
-             "trailing %d, leading %d" % (m["nstick"], m["c_fe_over_a"], m["c_fe_over_a"] - m["c_over_a"],
-                                          m["e_fe_over_a"], m["nslip_trailing"], m["nslip_leading"]),
+             "  stick zone from the traction ratio |F_t|/(mu F_n) < %g: %d nodes, c/a = %.3f (difference %+.3f), "
+             "centre e/a = %+.3f; contact edge h/a = %.3f" % (STICK_RATIO, m["nstick_ratio"], m["c_ratio_over_a"],
+                                                            m["c_ratio_over_a"] - m["c_over_a"], m["e_ratio_over_a"],
+                                                            m["h_over_a"]),
+             "  stick zone from the status labels: %d nodes, c_fe/a = %.3f (difference %+.3f), centre e/a = %+.3f; "
+             "slip nodes trailing %d, leading %d" % (m["nstick"], m["c_fe_over_a"], m["c_fe_over_a"] - m["c_over_a"],
+                                                     m["e_fe_over_a"], m["nslip_trailing"], m["nslip_leading"]),
              "  shear F_t/w - q(x) over |x| < a: max %.3f, rms %.3f (of mu p0); pressure F_n/w - p(x): max %.3f, "
              "rms %.3f (of p0)" % (m["shear_max"], m["shear_rms"], m["pressure_max"], m["pressure_rms"]),
              "  status changes in the run: %d" % m["status_changes"]]
     if "stage1" in m:
         s = m["stage1"]
-        lines.append("  pressed state (t = %.4g s, no tangential load): P = %.6g, Q = %.4g N/mm; inner zone below "
-                     "the limit: c_fe/a = %.3f, centre %+.3f; shear max %.3f, rms %.3f (of mu p0) against q = 0"
-                     % (s["time"], s["P"], s["Q"], s["c_fe_over_a"], s["e_fe_over_a"], s["shear_max"],
-                        s["shear_rms"]))
+        lines.append("  pressed state (t = %.4g s, no tangential load): P = %.6g, Q = %.4g N/mm; inner stick zone "
+                     "(ratio < %g): c/a = %.3f, centre %+.3f (labels: %.3f); shear max %.3f, rms %.3f (of mu p0) "
+                     "against q = 0" % (s["time"], s["P"], s["Q"], STICK_RATIO, s["c_ratio_over_a"], s["e_ratio_over_a"],
+                                        s["c_fe_over_a"], s["shear_max"], s["shear_rms"]))
     return "\n".join(lines)
 
 
@@ -144,8 +196,8 @@ def figure(ms, path, pressed=None):
     for m in ms:
         mk = marks.get(m["multiplier"], "^")
         ax.plot(m["x"] / a, m["q_fe"] / (mu * p0), mk + "-", ms=4, lw=0.8, mfc="none",
-                label=r"%s: $F_{t,i}/w_i$, stick zone $c/a$ = %.2f, centre %+.2f"
-                % (m["multiplier"], m["c_fe_over_a"], m["e_fe_over_a"]))
+                label=r"%s: $F_{t,i}/w_i$, stick zone ($|F_t|/\mu F_n$ < %g) $c/a$ = %.2f, centre %+.2f"
+                % (m["multiplier"], STICK_RATIO, m["c_ratio_over_a"], m["e_ratio_over_a"]))
     if pressed is not None:
         ax.plot(pressed["x"] / a, pressed["q_fe"] / (mu * p0), "x--", ms=4, lw=0.6, color="0.5",
                 label="%s pressed only (no shear stroke), converged: Q = %.2g N/mm"

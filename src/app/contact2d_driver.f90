@@ -18,6 +18,7 @@ module contact2d_driver
    use contact2d_build_config, only: sweep_lanes, build_flags
    use contact2d_static_run, only: static_run, static_distance, summary_contact_status
    use contact2d_initial, only: initial_velocity_apply, initial_velocity_warning
+   use contact2d_validity, only: validity_t
    implicit none
    private
    public :: driver_main
@@ -54,6 +55,7 @@ contains
       real(wp) :: static_dist
       logical :: static_converged, static_written, static_opened, static_ended, ended
       character(len=:), allocatable :: static_msg, dest, mesh_file
+      type(validity_t) :: validity
 
       call system_clock(clock0, rate)
       call tuner%begin()  ! the set-up window of the thread tuner (contact2d_threads)
@@ -333,6 +335,12 @@ contains
       if (size(snap_missed) > 0) call out%file%attr(out%file%id, 'snapshot_times_not_reached', snap_missed)
       call out%file%attr(out%file%id, 'dt_initial', dt_initial)
       call out%file%attr(out%file%id, 'dt_fallback_step', int(fallback_step))
+      ! the small-strain, small-displacement range of a run that reached its end (docs/output.md):
+      ! measured on the end state, stored now, said after the summary
+      if (.not. any(status == [character(len=24) :: 'interrupted', 'blow-up', 'contact solver failure'])) then
+         call validity%measure(model%mesh, solver%u)
+         call validity%write(out%file)
+      end if
       call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
       if (stat /= 0) call fail_write(errmsg//'; what was written so far is in '//opath%partial)
       ! complete: move the files into place (every end: converged or not, blow-up, interrupted;
@@ -344,6 +352,7 @@ contains
       keep_partial = dest /= opath%target   ! kept at its temporary name: fail() below must not remove it
       call summary(model, deck, solver, dest, converged, status, residual, wall, timings, dt_initial, fallback_step, &
                    snap_missed)
+      call validity%report()
       if (tuner%active) write (output_unit, '(a)') ' threads             auto: '//str(tuner%nmax)//' on '// &
          fixed(100*real(tuner%steps(2), wp)/max(1.0_wp, real(sum(tuner%steps), wp)), 1)//' % of the steps, 1 on the rest ('// &
          'started on '//str(tuner%started)//', '//str(tuner%switches)//' switches; set OMP_NUM_THREADS to fix the count)'

@@ -15,6 +15,7 @@ module contact2d_static_run
    use contact2d_static, only: static_t, static_saved_t
    use contact2d_kkt, only: kkt_names
    use contact2d_sys, only: sys_signal_pending
+   use contact2d_validity, only: validity_t
    implicit none
    private
    public :: static_run, static_distance, summary_contact_status
@@ -44,6 +45,7 @@ contains
       type(static_t) :: st
       type(explicit_t), target :: state
       type(output_t) :: out
+      type(validity_t) :: validity
       integer :: k, nk, stat, i, splits
       integer(i8) :: clock1, rate
       real(wp) :: t_end, t, wall, timings(4), w_prev, wf, wn, kkt_max(4), residual
@@ -154,6 +156,11 @@ contains
       call out%file%attr(out%file%id, 'time_factor_seconds', st%time_factor)
       call out%file%attr(out%file%id, 'time_condense_seconds', st%time_condense)
       call out%file%attr(out%file%id, 'time_solve_seconds', st%time_pdas)
+      ! the small-strain, small-displacement range of the end state (docs/output.md)
+      if (status /= 'interrupted' .and. status /= 'static solver failure') then
+         call validity%measure(model%mesh, state%u)
+         call validity%write(out%file)
+      end if
       call out%finish(model, state, converged, status, wall, timings, stat, errmsg)
       if (stat /= 0) then
          code = 2
@@ -169,6 +176,7 @@ contains
          if (replacing .and. .not. run_ended) final = path
       end if
       call summary()
+      call validity%report()
       call st%free()
       if (converged) then
          code = 0
@@ -197,6 +205,8 @@ contains
          state%time = t
          state%kinetic = 0
          state%strain = 0.5_wp*sum(st%u*st%fint)
+         state%strain_step = state%strain   ! a state at rest: the physical energies are these
+         state%kinetic_step = 0
          ! work of the loads and reactions: trapezoid over the increment (exact when the increment
          ! is linear; a diagnostic otherwise, see docs/static.md)
          ! (reactions live on the prescribed dofs, tractions on the free ones)

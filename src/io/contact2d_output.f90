@@ -20,13 +20,16 @@ module contact2d_output
    public :: output_t, history_names
 
    !> History series: SPEC section 8 names first, then additions (docs/output.md).
-   character(len=24), parameter :: history_names(16) = [character(len=24) :: &
+   !> kinetic_energy and strain_energy are the staggered energies of the balance (SPEC section 6);
+   !> kinetic_energy_physical and strain_energy_physical those of the state at the last whole
+   !> step t_n (explicit_t kinetic_step, strain_step).
+   character(len=24), parameter :: history_names(18) = [character(len=24) :: &
       'time', 'kinetic_energy', 'strain_energy', 'external_work', 'friction_dissipation', &
       'damping_dissipation', 'energy_balance_error', 'residual', 'normal_force_total', &
       'tangential_force_total', 'normal_contact_work', 'step', 'damping_alpha', 'stick_increment_max', &
-      'status_changes', 'penetration_max']
-   character(len=8), parameter :: history_units(16) = [character(len=8) :: &
-      's', 'mJ', 'mJ', 'mJ', 'mJ', 'mJ', '1', '1', 'N', 'N', 'mJ', '1', '1/s', 'mm', '1', 'mm']
+      'status_changes', 'penetration_max', 'kinetic_energy_physical', 'strain_energy_physical']
+   character(len=8), parameter :: history_units(18) = [character(len=8) :: &
+      's', 'mJ', 'mJ', 'mJ', 'mJ', 'mJ', '1', '1', 'N', 'N', 'mJ', '1', '1/s', 'mm', '1', 'mm', 'mJ', 'mJ']
    integer, parameter :: nseries = size(history_names)
    integer, parameter :: flush_samples = 256
    real(wp), parameter :: flush_seconds = 2.0_wp
@@ -158,7 +161,8 @@ contains
                                       solver%balance_error(c%friction_dissipation, c%normal_work), &
                                       residual, c%normal_total, c%tangential_total, c%normal_work, &
                                       real(solver%step, wp), solver%alpha, c%stick_increment_max, &
-                                      real(c%status_changes, wp), c%penetration_max]
+                                      real(c%status_changes, wp), c%penetration_max, &
+                                      solver%kinetic_step, solver%strain_step]
          c%stick_increment_max = 0
          c%status_changes = 0
          c%penetration_max = 0

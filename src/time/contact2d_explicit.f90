@@ -98,6 +98,13 @@ module contact2d_explicit
       ! energies (SPEC section 6) [mJ = N mm]
       real(wp) :: kinetic = 0              !< 1/2 v^(n+1/2) M v^(n+1/2)
       real(wp) :: strain = 0               !< 1/2 u^(n+1) K u^n (current when advance returns)
+      !> The physical energies at the last whole step t_n (docs/output.md): the two above are
+      !> staggered in time (SPEC section 6), which makes the discrete balance exact, but differ
+      !> from the energy of a state by O(omega dt) per mode. kinetic_step = 1/2 v^n M v^n with
+      !> v^n = (v^(n-1/2) + v^(n+1/2))/2 (the average the damping term uses), strain_step =
+      !> 1/2 u^n K u^n; before the first step the initial state (u = 0, v^0 = v^(-1/2)).
+      real(wp) :: kinetic_step = 0
+      real(wp) :: strain_step = 0
       real(wp) :: external_work = 0        !< loads and Dirichlet reactions
       real(wp) :: work_in = 0              !< sum of |external work increments|
       real(wp) :: damping_dissipation = 0
@@ -292,6 +299,10 @@ contains
          call stiff%apply(this%unew, this%fint)
          this%strain = 0.5_wp*sum(this%u*this%fint)
       end if
+      ! the physical strain energy at t_n, once per call (not per step): after the swap unew
+      ! holds u^n and fint = K u^n at every dof (the last step of a call is full); not after a
+      ! blow-up (the values may overflow, which traps in Debug builds, and mean nothing)
+      if (.not. this%blown_up) this%strain_step = 0.5_wp*sum(this%unew*this%fint)
    end subroutine explicit_advance
 
    !> The dofs whose u~ is changed after the sweep: loaded, prescribed and contact-node dofs,
@@ -581,6 +592,8 @@ contains
       end if
       this%alternating_energy = 0.5_wp*ealt
       this%kinetic = 0.5_wp*ekin
+      ! sum m ((v^(n-1/2) + v^(n+1/2))/2)^2 = edamp: the kinetic energy at the whole step t_n
+      this%kinetic_step = 0.5_wp*edamp
       if (full) this%strain = 0.5_wp*estrain
       this%damping_dissipation = this%damping_dissipation + alpha*dt*edamp
    end subroutine add_energies

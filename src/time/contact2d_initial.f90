@@ -28,6 +28,7 @@ contains
       solver%vsum_stale = .true.   ! sum m v^2 formed again by the next advance
       solver%kinetic = 0.5_wp*sum(solver%mass*(solver%v(1, :)**2 + solver%v(2, :)**2))
       solver%initial_kinetic = solver%kinetic
+      solver%kinetic_step = solver%kinetic   ! v^0 = v^(-1/2) (above)
       ! the blow-up guard compares the kinetic energy with the energy put in
       solver%work_in = solver%work_in + solver%kinetic
    end subroutine initial_velocity_apply

@@ -8,7 +8,9 @@ With the run's own total normal force P (2 x the half model's sum), 2D Hertz giv
 (postproc/hertz.py). Checked: convergence, a/R <= 0.1, the run's contact half-width (farthest node
 in contact) within one boundary element of a, the pressure at the centre within 1 % of p0, no
 penetration; for the circle, /contact/gap and /contact/normal against |x - C| - R and
--(x - C)/|x - C| computed here. The L2 error decreasing with level is the study's
+-(x - C)/|x - C| computed here; the pressure's sign: P0 never negative, P1 tensile just beyond the
+contact zone as the tail of M_c^-1, decaying by 2 - sqrt(3) per node (pressure_sign). The L2
+error decreasing with level is the study's
 (postproc/hertz_study.py, docs/geometry.md), too slow for the suite.
 """
 import os
@@ -44,6 +46,7 @@ def body(t):
     t.check_close(run, "pressure at the centre vs p0", m["p0"], m["p0_fe"], rtol=0.01,
                   reason="mesh + half-space idealisation; measured <= 0.59 % (cylinder P1)")
     t.info(run, "L2 error of p on Gamma_c / L2 norm of p", "%.4g" % m["l2_rel"])
+    pressure_sign(t, run, m, mult)
     with run.open() as f:
         x = f["mesh/coordinates"][()]
         u = f["final/displacement"][()]
@@ -70,6 +73,31 @@ def body(t):
                    1e-12)
     if scene == "cylinder" and mult == "p1":
         dropped_node_named_as_in_file(t, deck)
+
+
+def pressure_sign(t, run, m, mult):
+    """The sign of the recovered pressure (docs/geometry.md, Hertz study). P0: mu_n >= 0 on every
+    dual cell (its LCP). P1: the nodal forces F_n,i >= 0, but lambda = M_c^-1 F_n is not local:
+    beyond the last node j with a force, F_n = 0 makes (M_c lambda)_i = 0, and on edges of equal
+    length ([1 4 1] h/6 rows, as next to the contact here) its decaying solution is
+    lambda_(i+1) = -(2 - sqrt 3) lambda_i: tensile at j + 1 by 0.27 x lambda_j, alternating."""
+    with run.open() as f:
+        fn = f["final/contact/normal_force"][()]
+        p = f["final/contact/pressure"][()]
+    t.info(run, "min pressure / p0 (the most tensile value)", "%+.4f" % (p.min() / m["p0"]))
+    if mult == "p0":
+        t.check_ge(run, "P0 pressure mu_n,i / p0 at every dual cell", p / m["p0"], 0.0,
+                   reason="the P0 LCP keeps mu_n >= 0 exactly")
+        return
+    t.check_ge(run, "P1 nodal normal force F_n,i / max F_n", fn / fn.max(), 0.0, reason="the P1 LCP: exact")
+    j = int(np.flatnonzero(fn > 0).max())
+    ratio = p[j + 1:j + 4] / p[j:j + 3]
+    t.check_close(run, "lambda_(i+1)/lambda_i beyond the last node with a force (three nodes)",
+                  np.full(3, -(2 - np.sqrt(3))), ratio, rtol=1e-8,
+                  reason="M_c^-1's decaying mode: the Gamma_c edges there are equal (the .geo's SizeMin h within 2a "
+                  "of the contact point); measured to 3.5e-11")
+    t.check_equal(run, "the most tensile P1 value is at the edge: node j or j + 1 (j the last with a force)", True,
+                  int(np.argmin(p)) in (j, j + 1))
 
 
 def f_abscissa(run):
