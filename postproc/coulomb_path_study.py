@@ -10,7 +10,7 @@ sliding) or 4e-4 mm (partial slip: stick and slip nodes at the end). Two loading
   staged        press over [0, 2e-6 f] s, then shear over [2e-6 f, 6e-6 f] s (the deck's, times f);
   simultaneous  press and shear together over [0, 6e-6 f] s, proportionally (both curves in the
                 same two stages, to half the values at 3e-6 f s, then to the full ones).
-f scales the ramp duration. Each P1 end state is compared (energy norm, postproc/compare.py) with
+f scales the ramp duration. Each P1 end state is compared (energy norm, contact2d.compare) with
 GetFEM's quasi-static Coulomb solution of the same path (postproc/getfem_coulomb.py, 20 load
 increments per interval); P0 (no GetFEM reference) with the P0 run of the slowest ramp of the same
 path. The path effect is the difference between the two paths' quasi-static (GetFEM) answers.
@@ -19,10 +19,10 @@ status changes summed over the run (chatter), and the end state against GetFEM.
 
 Prints every figure; writes coulomb_path.csv, coulomb_large_mu.csv and coulomb_path.png in --out.
 Those already there are refused before any run (one line, exit 2) unless --force; each is written
-beside its name and moved into place (postproc/outfile.py). --reuse keeps a run only when it is a
-finished run of the same deck and settings (c2drun.reuse_problem), and a GetFEM reference only when
+beside its name and moved into place (contact2d.outfile). --reuse keeps a run only when it is a
+finished run of the same deck and settings (contact2d.runner.reuse_problem), and a GetFEM reference only when
 it is a complete, converged getfem_coulomb.py file of the same run's problem (effective deck) with
-the same increments (c2drun.reference_problem); any other is redone, one line says why.
+the same increments (contact2d.runner.reference_problem); any other is redone, one line says why.
 """
 import argparse
 import csv
@@ -33,10 +33,9 @@ from pathlib import Path
 import h5py
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2drun import ROOT, find_exe, keep_reference, out_dir, run  # noqa: E402
-from compare import compare  # noqa: E402
-from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
+from contact2d.runner import ROOT, find_exe, keep_reference, out_dir, run
+from contact2d.compare import compare
+from contact2d.outfile import refusal_exits, refuse_existing, replacing, save_figure
 
 HERE = Path(__file__).resolve().parent
 STROKES = {"sliding": 5.0e-3, "partial": 4.0e-4}
@@ -44,7 +43,7 @@ INCREMENTS = 20     # getfem_coulomb.py --increments: load steps per interval of
 
 
 def path_sets(path, stroke, f, level, mu=None):
-    """--set values of one run (c2drun.run)."""
+    """--set values of one run (contact2d.runner.run)."""
     t1, t2 = 2.0e-6 * f, 6.0e-6 * f
     sets = {"mesh:level": level, "solver:tol_residual": 1e-11, "output:xdmf": False, "solver:t_end": 10 * t2}
     if path == "staged":
@@ -60,7 +59,7 @@ def path_sets(path, stroke, f, level, mu=None):
 
 
 def contact2d(exe, mult, sets, h5, reuse):
-    """One run on one thread; with reuse, an existing h5 is kept only when c2drun.reuse_problem
+    """One run on one thread; with reuse, an existing h5 is kept only when contact2d.runner.reuse_problem
     finds it is this run, finished."""
     res = run(exe, ROOT / "inputs" / f"coulomb_sliding_{mult.lower()}.nml", h5, sets, threads=1, reuse=reuse)
     if res.returncode != 0:
@@ -70,7 +69,7 @@ def contact2d(exe, mult, sets, h5, reuse):
 
 def getfem(h5, ref, reuse):
     """The GetFEM Coulomb reference of the run h5; with reuse, an existing ref is kept only when it is
-    a complete, converged one of h5's problem with this study's increments (c2drun.keep_reference)."""
+    a complete, converged one of h5's problem with this study's increments (contact2d.runner.keep_reference)."""
     if keep_reference(ref, h5, reuse, program="getfem_coulomb", friction="coulomb", increments=INCREMENTS):
         return 0
     proc = subprocess.run([sys.executable, str(HERE / "getfem_coulomb.py"), str(h5), "-o", str(ref), "--force",

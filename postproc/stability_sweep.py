@@ -7,7 +7,7 @@ Coulomb (mu = 0.3, issue 11), and the penalty method, and records whether each r
 guard stops a run whose kinetic energy exceeds 1000 x the work put in), the largest kinetic
 energy over the largest external work, and max |u|. Writes stability.csv and stability.png in
 --out; those already there are refused before any run (one line, exit 2) unless --force, and each is
-written beside its name and moved into place (postproc/outfile.py).
+written beside its name and moved into place (contact2d.outfile).
 
     /usr/bin/python3 postproc/stability_sweep.py [--level 2] [--out study/stability] [--reuse] [--force]
 
@@ -17,14 +17,12 @@ iteration's estimate of the true limit is marked on the chart.
 import argparse
 import csv
 import sys
-from pathlib import Path
 
 import h5py
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2drun import ROOT, find_exe, out_dir, run, strip_group  # noqa: E402
-from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
+from contact2d.runner import ROOT, find_exe, out_dir, run, strip_group
+from contact2d.outfile import refusal_exits, refuse_existing, replacing, save_figure
 
 PROG = "stability_sweep.py"
 METHODS = {

@@ -26,10 +26,8 @@ import time
 import h5py
 import numpy as np
 
-# postproc/c2dh5.py (the project's reader) is read-only for the tests; we use its deck parser.
-_POSTPROC = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, "postproc")
-sys.path.insert(0, os.path.normpath(_POSTPROC))
-from c2dh5 import parse_effective_deck  # noqa: E402  (after the sys.path insertion)
+# the project's reader (postproc/contact2d/h5.py, on PYTHONPATH by ctest): its deck parser
+from contact2d.h5 import parse_effective_deck
 
 __all__ = ["Test", "Run", "parse_effective_deck", "q1_plane_strain", "exact_dt_limit"]
 

@@ -14,14 +14,12 @@ penetration; for the circle, /contact/gap and /contact/normal against |x - C| - 
 import os
 import re
 import shutil
-import sys
 
 import numpy as np
 
 import c2dtest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postproc"))
-import hertz  # noqa: E402
+from contact2d import hertz
 
 
 def body(t):

@@ -21,8 +21,8 @@ plateau rho c v0 / k_p (spring bed in series with the bar) within 5 %, balance <
 import numpy as np
 
 import c2dtest
-from c2dh5 import Run
-from impact_measure import exact, measure
+from contact2d.h5 import Run
+from contact2d.impact import exact, measure
 
 LEVELS = (2, 3, 4)
 SHIPPED = 2

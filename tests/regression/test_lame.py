@@ -9,15 +9,12 @@ pressure everywhere within 0.06 % of p_c at level 3, the relative energy-norm er
 against the run's, 2 x 2 Gauss) converging at a rate >= 0.98 between levels (Q1 optimum: 1),
 the circle's normals n_i = x_i / |x_i| and gaps rb - |x_i|.
 """
-import os
-import sys
 
 import numpy as np
 
 import c2dtest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postproc"))
-import lame  # noqa: E402
+from contact2d import lame
 
 LEVELS = (1, 2, 3)
 

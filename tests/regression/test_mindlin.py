@@ -20,15 +20,11 @@ Reported, not asserted (the formulas neglect the normal-tangential coupling, Dun
 here): the measured stick half-width c/a and its centre against Cattaneo-Mindlin
 c/a = sqrt(1 - Q/(mu P)), and the nodal shear F_t,i/w_i against q(x) (postproc/mindlin.py).
 """
-import os
-import sys
-
 import numpy as np
 
 import c2dtest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postproc"))
-import mindlin  # noqa: E402
+from contact2d import mindlin
 
 E, NU, MU_F = 7.0e4, 0.3, 0.3
 SLIP_TOL = 1.0e-8        # SPEC 3: |F_t| >= (1 - 1e-8) limit counts as slip

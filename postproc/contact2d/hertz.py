@@ -1,6 +1,6 @@
 """Hertz measures of a contact2d run of inputs/hertz_*.nml (half models, symmetry on x = 0).
 
-    from hertz import measure
+    from contact2d.hertz import measure
     m = measure("hertz_indenter_p1.h5")   # dict: P, a, p0, p0_fe, a_fe, h_edge, l2, l2_rel, ...
 
 With the run's own total normal force P (per unit thickness, twice the half model's sum):
@@ -90,6 +90,6 @@ def measure(path):
 if __name__ == "__main__":
     import sys
 
-    print("hertz.py is a module, not a script: it is used by "
-          "postproc/hertz_study.py, lame.py and tests/regression/test_hertz.py", file=sys.stderr)
+    print("contact2d.hertz is a module, not a script (docs/postproc.md): it is used by "
+          "postproc/hertz_study.py, contact2d.lame and tests/regression/test_hertz.py", file=sys.stderr)
     sys.exit(2)
