@@ -1,4 +1,4 @@
-"""contact2d's Python package: read, run and compare contact2d runs (docs/postproc.md).
+"""contact2d's Python package: read, run, compare and plot contact2d runs (docs/postproc.md).
 
     from contact2d import open_run
     with open_run("out.h5") as run:
@@ -10,13 +10,14 @@ Modules:
     outfile           never-overwrite, atomic writing of the tools' own products
     compare           SPEC section 9 errors between two runs on nested meshes
     fem_q1            Q1 plane-strain element algebra (stiffness, strain energy, prolongation)
+    plot              one run's contact fields and histories as PNG figures
     hertz, lame       Hertz contact and Lame's thick cylinder: closed forms and run measures
     cattaneo_mindlin  Cattaneo-Mindlin partial slip closed forms; mindlin measures a run
     impact            the exact 1D wave solution of the impact bar and its run measures
     getfem_reference, getfem_coulomb   the GetFEM static and quasi-static Coulomb references
 
 Scripts in postproc/ import it (Python searches a script's own folder first); elsewhere set
-PYTHONPATH=<repository>/postproc.
+PYTHONPATH=<repository>/postproc. `python3 -m contact2d <command>` lists the commands.
 """
 __all__ = ["Run", "RunFileError", "open_run", "parse_effective_deck"]
 
