@@ -30,9 +30,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-import h5py
 import numpy as np
 
+from contact2d.h5 import Run
 from contact2d.runner import ROOT, find_exe, keep_reference, out_dir, run
 from contact2d.compare import compare
 from contact2d.outfile import refusal_exits, refuse_existing, replacing, save_figure
@@ -78,12 +78,12 @@ def getfem(h5, ref, reuse):
 
 
 def summary(h5):
-    with h5py.File(h5, "r") as f:
-        st = f["final/contact/status"][()]
-        conv = int(f.attrs["converged"])
-        chg = int(np.sum(f["history/status_changes"][()])) if "history/status_changes" in f else -1
-        steps = int(f.attrs["steps"])
-        ft, fn = float(np.sum(f["final/contact/tangential_force"][()])), float(np.sum(f["final/contact/normal_force"][()]))
+    with Run(h5) as f:
+        st = f.contact("status")
+        conv = int(f.attr("converged"))
+        chg = int(np.sum(f.history("status_changes"))) if f.has("history/status_changes") else -1
+        steps = int(f.attr("steps"))
+        ft, fn = float(np.sum(f.contact("tangential_force"))), float(np.sum(f.contact("normal_force")))
     return st, conv, chg, steps, ft, fn
 
 
@@ -129,8 +129,8 @@ def main():
             ref = out / f"{r['stroke']}_{r['path']}_P0_f{max(factors):g}.h5"
         res = compare(r["file"], str(ref))
         st, conv, chg, steps, ft, fn = summary(r["file"])
-        with h5py.File(ref, "r") as g:
-            st_ref = g["final/contact/status"][()]
+        with Run(ref) as g:
+            st_ref = g.contact("status")
         r.update(energy=res["errors"]["energy"], status_equal=int(np.array_equal(st, st_ref)), converged=conv,
                  status_changes=chg, steps=steps, ft_over_fn=ft / fn,
                  reference="getfem" if r["multiplier"] == "P1" else "slowest P0 run")
@@ -141,10 +141,10 @@ def main():
     for stroke_name in STROKES:
         a, b = refs[(stroke_name, "staged")], refs[(stroke_name, "simultaneous")]
         e = compare(str(a), str(b))["errors"]["energy"]
-        with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
-            sa, sb = fa["final/contact/status"][()], fb["final/contact/status"][()]
-            fta = float(np.sum(fa["final/contact/tangential_force"][()]))
-            ftb = float(np.sum(fb["final/contact/tangential_force"][()]))
+        with Run(a) as fa, Run(b) as fb:
+            sa, sb = fa.contact("status"), fb.contact("status")
+            fta = float(np.sum(fa.contact("tangential_force")))
+            ftb = float(np.sum(fb.contact("tangential_force")))
         path_effect[stroke_name] = e
         print(f"path effect ({stroke_name}): GetFEM staged vs simultaneous energy-norm diff {e:.3e}; statuses "
               f"{sa.tolist()} vs {sb.tolist()}; total F_t {fta:.6f} vs {ftb:.6f} N")
@@ -171,8 +171,8 @@ def main():
                         ref = out / f"{tag}_getfem.h5"
                         if getfem(h5, ref, args.reuse) == 0:
                             row["energy_vs_getfem"] = compare(str(h5), str(ref))["errors"]["energy"]
-                            with h5py.File(ref, "r") as g:
-                                row["status_equal_getfem"] = int(np.array_equal(st, g["final/contact/status"][()]))
+                            with Run(ref) as g:
+                                row["status_equal_getfem"] = int(np.array_equal(st, g.contact("status")))
                     big.append(row)
                     print(f"mu = {mu:g} {stroke_name:8s} {mult} ramp x{f:g}: converged {conv}, steps {steps}, status "
                           f"changes {chg}, stick/slip/separated {row['n_stick']}/{row['n_slip']}/{row['n_separated']}, "

@@ -18,9 +18,9 @@ import argparse
 import csv
 import sys
 
-import h5py
 import numpy as np
 
+from contact2d.h5 import Run
 from contact2d.runner import ROOT, find_exe, out_dir, run, strip_group
 from contact2d.outfile import refusal_exits, refuse_existing, replacing, save_figure
 
@@ -82,15 +82,14 @@ def main():
             res = run(exe, deck_path, h5, all_sets, threads=1, reuse=args.reuse)
             if res.returncode not in (0, 2):
                 sys.exit(f"{name} at {r}: contact2d failed: {res.stderr.strip()}")
-            with h5py.File(h5, "r") as f:
-                h = f["history"]
-                wext = np.abs(h["external_work"][()])
+            with Run(h5) as f:
+                wext = np.abs(f.history("external_work"))
                 # the staggered strain energy turns negative in an unstable mode: use the kinetic one
-                growth = float(np.max(h["kinetic_energy"][()]) / max(np.max(wext), 1e-300))
-                umax = float(np.max(np.abs(f["final/displacement"][()])))
-                status = f.attrs["status"]
-                limit = float(f.attrs.get("dt_stable_estimate", np.nan) / f.attrs["dt_critical"])
-                steps = int(f.attrs["steps"])
+                growth = float(np.max(f.history("kinetic_energy")) / max(np.max(wext), 1e-300))
+                umax = float(np.max(np.abs(f.displacement)))
+                status = f.status
+                limit = float(f.attr("dt_stable_estimate", np.nan) / f.attr("dt_critical"))
+                steps = int(f.attr("steps"))
             bounded = status != "blow-up" and np.isfinite(growth)
             rows.append(dict(method=name, ratio=float(r), bounded=int(bounded), status=status, steps=steps,
                              kinetic_over_work=growth, max_abs_u=umax, power_limit=limit))

@@ -47,6 +47,7 @@ import h5py
 import numpy as np
 
 from . import getfem_reference as gr
+from .h5 import Run
 from .outfile import OutputRefused, check_target, replacing
 
 PROGRAM = "getfem_coulomb"
@@ -283,9 +284,9 @@ def main(argv=None):
         return 2
     start = None
     if args.from_snapshot is not None:
-        with h5py.File(args.input, "r") as f:
-            snaps = sorted(((float(g.attrs["time"]), g) for g in f["fields"].values() if float(g.attrs["time"])
-                            >= args.from_snapshot * (1 - 1e-9)), key=lambda s: s[0]) if "fields" in f else []
+        with Run(args.input) as run:
+            snaps = [(float(g.attrs["time"]), g) for g in run.snapshots()
+                     if float(g.attrs["time"]) >= args.from_snapshot * (1 - 1e-9)]
             if not snaps:
                 print("getfem_coulomb: refused: %s: no /fields snapshot at or after t = %g"
                       % (args.input, args.from_snapshot), file=sys.stderr)

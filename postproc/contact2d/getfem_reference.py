@@ -36,7 +36,7 @@ import time
 import h5py
 import numpy as np
 
-from .h5 import parse_effective_deck
+from .h5 import Run, parse_effective_deck
 from .outfile import OutputRefused, check_target, replacing
 
 PROGRAM = "getfem_reference"
@@ -130,8 +130,8 @@ def parse_sides(items):
 def check_prescribed(path, prob):
     """Every dof with a non-zero reaction in the run (/final/reaction is 0 off the prescribed dofs)
     is prescribed here: a --side that selects too few nodes is refused."""
-    with h5py.File(path, "r") as f:
-        reaction = f["final/reaction"][()]
+    with Run(path) as run:
+        reaction = run.final("reaction")
     missed = (reaction != 0) & prob["free"]
     if missed.any():
         nd, cp = np.argwhere(missed)[0]
@@ -149,12 +149,12 @@ def read_problem(path, multiplier=None, friction=None, sides=None, curved_plane=
     sides: {boundary name: bounding-box side} for the &dirichlet / &traction groups of a Gmsh mesh
     (side_of). curved_plane: accept a curved Gamma_c against a plane obstacle (every node then has
     the plane's normal, as contact2d's docs/geometry.md says; /contact/normal is checked)."""
-    with h5py.File(path, "r") as f:
-        attrs = dict(f.attrs)
-        if "effective_deck" not in attrs:
+    with Run(path) as run:
+        f = run.file                       # the groups are copied whole into the reference file
+        attrs = dict(run.attrs)
+        if run.attr("effective_deck") is None:
             raise Refused("%s has no 'effective_deck' attribute: not a contact2d output file" % path)
-        text = attrs["effective_deck"]
-        text = text.decode() if isinstance(text, bytes) else str(text)
+        text = str(run.attr("effective_deck"))
         x = f["mesh/coordinates"][()].astype(float)
         conn = f["mesh/connectivity"][()].astype(np.int64) - 1
         has_contact = "contact" in f and "nodes" in f["contact"]

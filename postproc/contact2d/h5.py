@@ -233,6 +233,13 @@ class Run:
         n = self.contact_setup("normal").reshape(-1, 2)
         return self.contact_setup("gap") - np.einsum("ij,ij->i", u, n)
 
+    # -- /fields/<step> snapshots -------------------------------------------------------------
+    def snapshots(self):
+        """The /fields/<step> groups (h5py groups; attribute `time` [s]), by increasing time."""
+        if "fields" not in self.file:
+            return []
+        return sorted(self.file["fields"].values(), key=lambda g: float(g.attrs["time"]))
+
     @property
     def material(self):
         m = self.deck["material"]

@@ -11,12 +11,9 @@ adjacent segments). Its L2 error on Gamma_c is integrated segment by segment wit
 samples per segment against the exact p at the horizontal coordinate x of each sample.
 Only numpy and h5py.
 """
-import h5py
 import numpy as np
 
-
-def _attr(v):
-    return v.decode() if isinstance(v, bytes) else str(v)
+from .h5 import Run
 
 
 def _deck_value(text, group, name):
@@ -40,16 +37,16 @@ def hertz(P, R, E, nu):
 
 
 def measure(path):
-    with h5py.File(path, "r") as f:
-        eff = _attr(f.attrs["effective_deck"])
-        x = f["mesh/coordinates"][()]
-        nodes = f["contact/nodes"][()] - 1
-        fn = f["final/contact/normal_force"][()]
-        p = f["final/contact/pressure"][()]
-        status = f["final/contact/status"][()]
-        mult = _attr(f.attrs["multiplier"])
-        conv = int(f.attrs["converged"])
-        nel = int(f.attrs["element_count"])
+    with Run(path) as run:
+        eff = run.attr("effective_deck")
+        x = run.coordinates
+        nodes = run.contact_nodes
+        fn = run.contact("normal_force")
+        p = run.contact("pressure")
+        status = run.contact("status")
+        mult = run.attr("multiplier")
+        conv = int(run.attr("converged"))
+        nel = int(run.attr("element_count"))
     E = float(_deck_value(eff, "material", "young"))
     nu = float(_deck_value(eff, "material", "poisson"))
     if "'circle'" in eff:

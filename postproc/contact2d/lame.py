@@ -12,11 +12,11 @@ and the mesh (ra = min |x|, rb = max |x|). Only numpy and h5py (and contact2d.fe
 """
 import sys
 
-import h5py
 import numpy as np
 
 from . import fem_q1
-from .hertz import _attr, _deck_value
+from .h5 import Run
+from .hertz import _deck_value
 
 
 def exact(ra, rb, pi, E, nu):
@@ -28,14 +28,14 @@ def exact(ra, rb, pi, E, nu):
 
 
 def measure(path):
-    with h5py.File(path, "r") as f:
-        eff = _attr(f.attrs["effective_deck"])
-        x = f["mesh/coordinates"][()]
-        conn = f["mesh/connectivity"][()] - 1
-        u = f["final/displacement"][()]
-        p = f["final/contact/pressure"][()]
-        status = f["final/contact/status"][()]
-        conv = int(f.attrs["converged"])
+    with Run(path) as run:
+        eff = run.attr("effective_deck")
+        x = run.coordinates
+        conn = run.connectivity - 1
+        u = run.displacement
+        p = run.contact("pressure")
+        status = run.contact("status")
+        conv = int(run.attr("converged"))
     E = float(_deck_value(eff, "material", "young"))
     nu = float(_deck_value(eff, "material", "poisson"))
     pi = -float(_deck_value(eff, "traction", "values").split(",")[0])

@@ -24,15 +24,10 @@ Only numpy, h5py (and matplotlib for --figure).
 import argparse
 import sys
 
-import h5py
 import numpy as np
 
 from . import cattaneo_mindlin as cm
-from .h5 import parse_effective_deck
-
-
-def _attr(v):
-    return v.decode() if isinstance(v, bytes) else str(v)
+from .h5 import Run
 
 
 def stick_zone(xc, status):
@@ -71,23 +66,23 @@ def _state(xc, w, fn, ft, status, mu, P, Q, R, E, nu):
 def measure(path):
     """Final state, and the pressed state (key 'stage1': the run's last /fields snapshot, at the
     start of the shearing stage in the shipped decks) when the run has one."""
-    with h5py.File(path, "r") as f:
-        deck = parse_effective_deck(_attr(f.attrs["effective_deck"]))
-        x = f["mesh/coordinates"][()]
-        nodes = f["contact/nodes"][()] - 1
-        w = f["contact/weight"][()]
-        fn = f["final/contact/normal_force"][()]
-        ft = f["final/contact/tangential_force"][()]
-        status = f["final/contact/status"][()]
-        reaction = f["final/reaction"][()]
-        mult = _attr(f.attrs["multiplier"])
-        conv = int(f.attrs["converged"])
-        snaps = sorted(f["fields"].values(), key=lambda g: float(g.attrs["time"])) if "fields" in f else []
+    with Run(path) as run:
+        deck = run.deck
+        x = run.coordinates
+        nodes = run.contact_nodes
+        w = run.contact_setup("weight")
+        fn = run.contact("normal_force")
+        ft = run.contact("tangential_force")
+        status = run.contact("status")
+        reaction = run.final("reaction")
+        mult = run.attr("multiplier")
+        conv = int(run.attr("converged"))
+        snaps = run.snapshots()
         snap = None
         if snaps:
             g = snaps[-1]                                # the last: the pressed state before shearing
             snap = (float(g.attrs["time"]), g["contact_normal_force"][()], g["contact_tangential_force"][()])
-        hist = {k: f["history/" + k][()] for k in ("time", "status_changes")}
+        hist = {k: run.history(k) for k in ("time", "status_changes")}
     E, nu = float(deck["material"]["young"]), float(deck["material"]["poisson"])
     mu = float(deck["contact"]["friction_coefficient"])
     R = float(np.max(x[:, 1]) - np.min(x[:, 1]))       # the flat side's height above the contact point

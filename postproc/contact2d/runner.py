@@ -76,12 +76,12 @@ def _same_value(want, have):
 def _root_attrs(path, needs=()):
     """An HDF5 file's root attributes as text, or None when it cannot be read or lacks a dataset of
     `needs` (written last: a file cut short has not got it)."""
-    import h5py
+    from .h5 import Run   # h5py only where a file is read
     try:
-        with h5py.File(str(path), "r") as f:
-            if not all(name in f for name in needs):
+        with Run(path) as run:
+            if not all(run.has(name) for name in needs):
                 return None
-            return {k: v.decode() if isinstance(v, bytes) else str(v) for k, v in f.attrs.items()}
+            return {k: str(run.attr(k)) for k in run.attrs}
     except OSError:
         return None
 

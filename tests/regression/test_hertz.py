@@ -5,7 +5,7 @@ elastic block; --scene cylinder: inputs/hertz_cylinder_<m>.nml, an elastic half-
 plane (a curved Gamma_c). Both are half models on Gmsh meshes graded towards the contact.
 With the run's own total normal force P (2 x the half model's sum), 2D Hertz gives
     a = sqrt(4 P R / (pi E*)), p0 = 2 P / (pi a), E* = E / (1 - nu^2)
-(postproc/hertz.py). Checked: convergence, a/R <= 0.1, the run's contact half-width (farthest node
+(contact2d.hertz). Checked: convergence, a/R <= 0.1, the run's contact half-width (farthest node
 in contact) within one boundary element of a, the pressure at the centre within 1 % of p0, no
 penetration; for the circle, /contact/gap and /contact/normal against |x - C| - R and
 -(x - C)/|x - C| computed here. The L2 error decreasing with level is the study's
