@@ -27,7 +27,11 @@ import h5py
 import numpy as np
 
 # the project's reader (postproc/contact2d/h5.py, on PYTHONPATH by ctest): its deck parser
-from contact2d.h5 import parse_effective_deck
+try:
+    from contact2d.h5 import parse_effective_deck
+except ImportError as _exc:   # run by hand without PYTHONPATH: one line saying what to set
+    raise SystemExit("c2dtest: cannot import the package contact2d (%s): run the test through ctest, or set "
+                     "PYTHONPATH=<repository>/postproc" % _exc)
 
 __all__ = ["Test", "Run", "parse_effective_deck", "q1_plane_strain", "exact_dt_limit"]
 
