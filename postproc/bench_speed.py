@@ -14,7 +14,7 @@ For each mesh level k (13 2^k x 3 2^k elements):
 Then the speed targets with PASS/MISS (docs/performance.md, "Targets not met"), and the rows of
 the table in --out/bench.json; a bench.json already there is refused before any run (one line,
 exit 2) unless --force, and it is written beside its name and moved into place
-(postproc/outfile.py). Timings are wall-clock on a
+(contact2d.outfile). Timings are wall-clock on a
 shared machine: medians, and ratios of two things measured side by side.
 
 More figures (each section can be chosen with --sections; issue5 is the list above):
@@ -52,10 +52,9 @@ import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, out_dir, parse_levels, run  # noqa: E402
-from outfile import refusal_exits, refuse_existing, replacing  # noqa: E402
+from contact2d.h5 import Run
+from contact2d.runner import ROOT, find_exe, out_dir, parse_levels, run
+from contact2d.outfile import refusal_exits, refuse_existing, replacing
 
 DECK = ROOT / "inputs" / "baillet_sassi_2002_p1.nml"
 HERTZ_DECKS = ("hertz_cylinder_p1.nml", "hertz_indenter_p1.nml")

@@ -26,12 +26,10 @@ import resource
 import statistics
 import subprocess
 import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, levels_or_exit, out_dir, run  # noqa: E402
-from outfile import refuse_existing  # noqa: E402
+from contact2d.h5 import Run
+from contact2d.runner import ROOT, find_exe, levels_or_exit, out_dir, run
+from contact2d.outfile import refuse_existing
 
 PROG = "bench_static.py"
 TARGETS = {5: 0.43, 6: 1.9}     # CHOLMOD with the contact condensed [s]; target within 2x (docs/static.md)

@@ -10,7 +10,7 @@ sliding) or 4e-4 mm (partial slip: stick and slip nodes at the end). Two loading
   staged        press over [0, 2e-6 f] s, then shear over [2e-6 f, 6e-6 f] s (the deck's, times f);
   simultaneous  press and shear together over [0, 6e-6 f] s, proportionally (both curves in the
                 same two stages, to half the values at 3e-6 f s, then to the full ones).
-f scales the ramp duration. Each P1 end state is compared (energy norm, postproc/compare.py) with
+f scales the ramp duration. Each P1 end state is compared (energy norm, contact2d.compare) with
 GetFEM's quasi-static Coulomb solution of the same path (postproc/getfem_coulomb.py, 20 load
 increments per interval); P0 (no GetFEM reference) with the P0 run of the slowest ramp of the same
 path. The path effect is the difference between the two paths' quasi-static (GetFEM) answers.
@@ -19,10 +19,10 @@ status changes summed over the run (chatter), and the end state against GetFEM.
 
 Prints every figure; writes coulomb_path.csv, coulomb_large_mu.csv and coulomb_path.png in --out.
 Those already there are refused before any run (one line, exit 2) unless --force; each is written
-beside its name and moved into place (postproc/outfile.py). --reuse keeps a run only when it is a
-finished run of the same deck and settings (c2drun.reuse_problem), and a GetFEM reference only when
+beside its name and moved into place (contact2d.outfile). --reuse keeps a run only when it is a
+finished run of the same deck and settings (contact2d.runner.reuse_problem), and a GetFEM reference only when
 it is a complete, converged getfem_coulomb.py file of the same run's problem (effective deck) with
-the same increments (c2drun.reference_problem); any other is redone, one line says why.
+the same increments (contact2d.runner.reference_problem); any other is redone, one line says why.
 """
 import argparse
 import csv
@@ -30,13 +30,12 @@ import subprocess
 import sys
 from pathlib import Path
 
-import h5py
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2drun import ROOT, find_exe, keep_reference, out_dir, run  # noqa: E402
-from compare import compare  # noqa: E402
-from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
+from contact2d.h5 import Run
+from contact2d.runner import ROOT, find_exe, keep_reference, out_dir, run
+from contact2d.compare import compare
+from contact2d.outfile import refusal_exits, refuse_existing, replacing, save_figure
 
 HERE = Path(__file__).resolve().parent
 STROKES = {"sliding": 5.0e-3, "partial": 4.0e-4}
@@ -44,7 +43,7 @@ INCREMENTS = 20     # getfem_coulomb.py --increments: load steps per interval of
 
 
 def path_sets(path, stroke, f, level, mu=None):
-    """--set values of one run (c2drun.run)."""
+    """--set values of one run (contact2d.runner.run)."""
     t1, t2 = 2.0e-6 * f, 6.0e-6 * f
     sets = {"mesh:level": level, "solver:tol_residual": 1e-11, "output:xdmf": False, "solver:t_end": 10 * t2}
     if path == "staged":
@@ -60,7 +59,7 @@ def path_sets(path, stroke, f, level, mu=None):
 
 
 def contact2d(exe, mult, sets, h5, reuse):
-    """One run on one thread; with reuse, an existing h5 is kept only when c2drun.reuse_problem
+    """One run on one thread; with reuse, an existing h5 is kept only when contact2d.runner.reuse_problem
     finds it is this run, finished."""
     res = run(exe, ROOT / "inputs" / f"coulomb_sliding_{mult.lower()}.nml", h5, sets, threads=1, reuse=reuse)
     if res.returncode != 0:
@@ -70,7 +69,7 @@ def contact2d(exe, mult, sets, h5, reuse):
 
 def getfem(h5, ref, reuse):
     """The GetFEM Coulomb reference of the run h5; with reuse, an existing ref is kept only when it is
-    a complete, converged one of h5's problem with this study's increments (c2drun.keep_reference)."""
+    a complete, converged one of h5's problem with this study's increments (contact2d.runner.keep_reference)."""
     if keep_reference(ref, h5, reuse, program="getfem_coulomb", friction="coulomb", increments=INCREMENTS):
         return 0
     proc = subprocess.run([sys.executable, str(HERE / "getfem_coulomb.py"), str(h5), "-o", str(ref), "--force",
@@ -79,12 +78,12 @@ def getfem(h5, ref, reuse):
 
 
 def summary(h5):
-    with h5py.File(h5, "r") as f:
-        st = f["final/contact/status"][()]
-        conv = int(f.attrs["converged"])
-        chg = int(np.sum(f["history/status_changes"][()])) if "history/status_changes" in f else -1
-        steps = int(f.attrs["steps"])
-        ft, fn = float(np.sum(f["final/contact/tangential_force"][()])), float(np.sum(f["final/contact/normal_force"][()]))
+    with Run(h5) as f:
+        st = f.contact("status")
+        conv = int(f.attr("converged"))
+        chg = int(np.sum(f.history("status_changes"))) if f.has("history/status_changes") else -1
+        steps = int(f.attr("steps"))
+        ft, fn = float(np.sum(f.contact("tangential_force"))), float(np.sum(f.contact("normal_force")))
     return st, conv, chg, steps, ft, fn
 
 
@@ -130,8 +129,8 @@ def main():
             ref = out / f"{r['stroke']}_{r['path']}_P0_f{max(factors):g}.h5"
         res = compare(r["file"], str(ref))
         st, conv, chg, steps, ft, fn = summary(r["file"])
-        with h5py.File(ref, "r") as g:
-            st_ref = g["final/contact/status"][()]
+        with Run(ref) as g:
+            st_ref = g.contact("status")
         r.update(energy=res["errors"]["energy"], status_equal=int(np.array_equal(st, st_ref)), converged=conv,
                  status_changes=chg, steps=steps, ft_over_fn=ft / fn,
                  reference="getfem" if r["multiplier"] == "P1" else "slowest P0 run")
@@ -142,10 +141,10 @@ def main():
     for stroke_name in STROKES:
         a, b = refs[(stroke_name, "staged")], refs[(stroke_name, "simultaneous")]
         e = compare(str(a), str(b))["errors"]["energy"]
-        with h5py.File(a, "r") as fa, h5py.File(b, "r") as fb:
-            sa, sb = fa["final/contact/status"][()], fb["final/contact/status"][()]
-            fta = float(np.sum(fa["final/contact/tangential_force"][()]))
-            ftb = float(np.sum(fb["final/contact/tangential_force"][()]))
+        with Run(a) as fa, Run(b) as fb:
+            sa, sb = fa.contact("status"), fb.contact("status")
+            fta = float(np.sum(fa.contact("tangential_force")))
+            ftb = float(np.sum(fb.contact("tangential_force")))
         path_effect[stroke_name] = e
         print(f"path effect ({stroke_name}): GetFEM staged vs simultaneous energy-norm diff {e:.3e}; statuses "
               f"{sa.tolist()} vs {sb.tolist()}; total F_t {fta:.6f} vs {ftb:.6f} N")
@@ -172,8 +171,8 @@ def main():
                         ref = out / f"{tag}_getfem.h5"
                         if getfem(h5, ref, args.reuse) == 0:
                             row["energy_vs_getfem"] = compare(str(h5), str(ref))["errors"]["energy"]
-                            with h5py.File(ref, "r") as g:
-                                row["status_equal_getfem"] = int(np.array_equal(st, g["final/contact/status"][()]))
+                            with Run(ref) as g:
+                                row["status_equal_getfem"] = int(np.array_equal(st, g.contact("status")))
                     big.append(row)
                     print(f"mu = {mu:g} {stroke_name:8s} {mult} ramp x{f:g}: converged {conv}, steps {steps}, status "
                           f"changes {chg}, stick/slip/separated {row['n_stick']}/{row['n_slip']}/{row['n_separated']}, "

@@ -5,8 +5,8 @@
                                              [--reuse] [--update-docs] [--force]
 
 Runs inputs/hertz_indenter_<m>.nml and inputs/hertz_cylinder_<m>.nml (m = p1, p0) at the Hertz
-levels, inputs/lame_cavity_<m>.nml at the Lame levels, measures them with postproc/hertz.py and
-postproc/lame.py, and writes into --out
+levels, inputs/lame_cavity_<m>.nml at the Lame levels, measures them with contact2d.hertz and
+contact2d.lame, and writes into --out
   hertz_pressure.png     p(x) of the runs (P1 and P0) against Hertz, per scene
   hertz_convergence.png  relative L2 error of p on Gamma_c against the contact edge size h at
                          x = 0 (Hertz) and energy-norm error against h (Lame)
@@ -15,9 +15,9 @@ With --update-docs they go instead to the tracked docs/figures/hertz_pressure.pn
 docs/figures/hertz_convergence.png and docs/geometry_study.md (docs/geometry.md, "Study").
 The table and figures already in --out are refused before any run (one line, exit 2) unless
 --force (--update-docs asks for the tracked ones); each is written beside its name and moved into
-place (postproc/outfile.py).
+place (contact2d.outfile).
 Outputs of the runs go to --out (kept: --reuse skips a run whose output is a finished run of the
-same deck and level, see postproc/c2drun.py).
+same deck and level, see contact2d.runner).
 """
 import argparse
 import sys
@@ -25,11 +25,9 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import hertz  # noqa: E402
-import lame  # noqa: E402
-from c2drun import ROOT, find_exe, levels_or_exit, out_dir, run  # noqa: E402
-from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
+from contact2d import hertz, lame
+from contact2d.runner import ROOT, find_exe, levels_or_exit, out_dir, run
+from contact2d.outfile import refusal_exits, refuse_existing, replacing, save_figure
 
 PROG = "hertz_study.py"
 

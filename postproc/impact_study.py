@@ -17,7 +17,7 @@ penetration and the energy balance error. Figures: <figures>/impact_force.png (f
 against the exact plateau) and <figures>/impact_energy.png (energy lost and rebound error against
 h); --figures defaults to --out (the tracked ones: --figures docs/figures --force). Runs are
 reused when their .h5 exists (--rerun redoes them). The table and figures already there are
-refused before any run (one line, exit 2) unless --force; each is written beside its name and moved into place (postproc/outfile.py).
+refused before any run (one line, exit 2) unless --force; each is written beside its name and moved into place (contact2d.outfile).
 """
 import argparse
 import csv
@@ -26,11 +26,10 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, out_dir, run  # noqa: E402
-from impact_measure import exact, measure  # noqa: E402
-from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
+from contact2d.h5 import Run
+from contact2d.runner import ROOT, find_exe, out_dir, run
+from contact2d.impact import exact, measure
+from contact2d.outfile import refusal_exits, refuse_existing, replacing, save_figure
 
 METHODS = [  # label, deck, extra settings
     ("P1", "impact_bar_p1.nml", {}),

@@ -7,7 +7,7 @@
    h = 0.1/2^k mm), tightened to tol_residual = 1e-10 so that relaxation error stays far below
    discretisation error. A converged explicit run of the same deck, level and --tol already in
    --out is reused (pass --rerun to redo it); any other file there is rerun, one line says why.
-2. Errors (postproc/compare.py, SPEC 9): relative energy-norm, H1-seminorm and contact-pressure
+2. Errors (contact2d.compare, SPEC 9): relative energy-norm, H1-seminorm and contact-pressure
    L2 errors of every level against the finest (the reference), and the successive differences
    ||u_(k+1) - u_k|| / ||u_ref||. Least-squares rates in log h over all levels and over the three
    finest, both ways. Writes convergence.csv, rates.csv and convergence.png (the paper's Fig. 2,
@@ -17,21 +17,19 @@
    several h, P1 against P0, stick / slip / separated zones marked).
 4. p1_sign.csv: where and how much the recovered P1 pressure is tensile, against P0.
 The tables and figures already in --out are refused before any run (one line, exit 2) unless
---force; each is written beside its name and moved into place (postproc/outfile.py).
+--force; each is written beside its name and moved into place (contact2d.outfile).
 """
 import argparse
 import csv
 import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, levels_or_exit, out_dir, reuse_problem, run  # noqa: E402
-from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
-from compare import compare  # noqa: E402
+from contact2d.h5 import Run
+from contact2d.runner import ROOT, find_exe, levels_or_exit, out_dir, reuse_problem, run
+from contact2d.outfile import refusal_exits, refuse_existing, replacing, save_figure
+from contact2d.compare import compare
 
 MULTIPLIERS = ("P1", "P0")
 

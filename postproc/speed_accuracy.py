@@ -12,9 +12,9 @@ a level-(max+1) run made here), and solves the same problem on the same meshes w
 static reference (postproc/getfem_reference.py; its assembly + solve time, Python start-up
 excluded). Writes speed_accuracy.csv and speed_accuracy.png (log-log, GetFEM on the same axes);
 those already in --out are refused before any run (one line, exit 2) unless --force, and each is
-written beside its name and moved into place (postproc/outfile.py). --reuse keeps finished runs of
+written beside its name and moved into place (contact2d.outfile). --reuse keeps finished runs of
 the same settings and a getfem_*.h5 that is a complete, converged reference of the same run's problem
-(c2drun.reference_problem); any other is recomputed, one line says why.
+(contact2d.runner.reference_problem); any other is recomputed, one line says why.
 """
 import argparse
 import csv
@@ -22,11 +22,10 @@ import subprocess
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, keep_reference, levels_or_exit, out_dir, run  # noqa: E402
-from compare import compare  # noqa: E402
-from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
+from contact2d.h5 import Run
+from contact2d.runner import ROOT, find_exe, keep_reference, levels_or_exit, out_dir, run
+from contact2d.compare import compare
+from contact2d.outfile import refusal_exits, refuse_existing, replacing, save_figure
 
 RAMPS = (0.5e-6, 2.5e-6, 1.0e-5)
 TOLS = (1e-4, 1e-6, 1e-8)

@@ -8,20 +8,18 @@ only in contact, long undamped runs. The dt sweep is postproc/stability_sweep.py
 Every part prints its figures and writes a CSV and a PNG into --out; docs/stability.md discusses
 them. Runs are reused when their .h5 exists (pass --rerun to redo them). The CSVs and PNGs of the
 parts asked for already in --out are refused before any run (one line, exit 2) unless --force;
-each is written beside its name and moved into place (postproc/outfile.py).
+each is written beside its name and moved into place (contact2d.outfile).
 """
 import argparse
 import csv
 import sys
-from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2dh5 import Run  # noqa: E402
-from c2drun import ROOT, find_exe, out_dir, run  # noqa: E402
-from compare import compare  # noqa: E402
-from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
+from contact2d.h5 import Run
+from contact2d.runner import ROOT, find_exe, out_dir, run
+from contact2d.compare import compare
+from contact2d.outfile import refusal_exits, refuse_existing, replacing, save_figure
 
 E, NU, H, DELTA = 7.0e4, 0.3, 0.5, 1.0e-3
 PRODUCTS = {"penalty": ("penalty.csv", "penalty.png"), "infsup": ("infsup.csv", "infsup.png"),

@@ -7,7 +7,7 @@ Coulomb (mu = 0.3, issue 11), and the penalty method, and records whether each r
 guard stops a run whose kinetic energy exceeds 1000 x the work put in), the largest kinetic
 energy over the largest external work, and max |u|. Writes stability.csv and stability.png in
 --out; those already there are refused before any run (one line, exit 2) unless --force, and each is
-written beside its name and moved into place (postproc/outfile.py).
+written beside its name and moved into place (contact2d.outfile).
 
     /usr/bin/python3 postproc/stability_sweep.py [--level 2] [--out study/stability] [--reuse] [--force]
 
@@ -17,14 +17,12 @@ iteration's estimate of the true limit is marked on the chart.
 import argparse
 import csv
 import sys
-from pathlib import Path
 
-import h5py
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from c2drun import ROOT, find_exe, out_dir, run, strip_group  # noqa: E402
-from outfile import refusal_exits, refuse_existing, replacing, save_figure  # noqa: E402
+from contact2d.h5 import Run
+from contact2d.runner import ROOT, find_exe, out_dir, run, strip_group
+from contact2d.outfile import refusal_exits, refuse_existing, replacing, save_figure
 
 PROG = "stability_sweep.py"
 METHODS = {
@@ -84,15 +82,14 @@ def main():
             res = run(exe, deck_path, h5, all_sets, threads=1, reuse=args.reuse)
             if res.returncode not in (0, 2):
                 sys.exit(f"{name} at {r}: contact2d failed: {res.stderr.strip()}")
-            with h5py.File(h5, "r") as f:
-                h = f["history"]
-                wext = np.abs(h["external_work"][()])
+            with Run(h5) as f:
+                wext = np.abs(f.history("external_work"))
                 # the staggered strain energy turns negative in an unstable mode: use the kinetic one
-                growth = float(np.max(h["kinetic_energy"][()]) / max(np.max(wext), 1e-300))
-                umax = float(np.max(np.abs(f["final/displacement"][()])))
-                status = f.attrs["status"]
-                limit = float(f.attrs.get("dt_stable_estimate", np.nan) / f.attrs["dt_critical"])
-                steps = int(f.attrs["steps"])
+                growth = float(np.max(f.history("kinetic_energy")) / max(np.max(wext), 1e-300))
+                umax = float(np.max(np.abs(f.displacement)))
+                status = f.status
+                limit = float(f.attr("dt_stable_estimate", np.nan) / f.attr("dt_critical"))
+                steps = int(f.attr("steps"))
             bounded = status != "blow-up" and np.isfinite(growth)
             rows.append(dict(method=name, ratio=float(r), bounded=int(bounded), status=status, steps=steps,
                              kinetic_over_work=growth, max_abs_u=umax, power_limit=limit))

@@ -1,20 +1,16 @@
 #!/usr/bin/python3
-"""Tests of postproc/cattaneo_mindlin.py: algebraic facts of the Hertz and Cattaneo-Mindlin forms.
+"""Tests of contact2d.cattaneo_mindlin: algebraic facts of the Hertz and Cattaneo-Mindlin forms.
 
-    /usr/bin/python3 tests/postproc/test_cattaneo_mindlin.py [-v]
+    PYTHONPATH=postproc /usr/bin/python3 tests/postproc/test_cattaneo_mindlin.py [-v]
 """
 import math
-import os
 import sys
 import unittest
 
 import numpy as np
 
-ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(ROOT, "postproc"))
-sys.dont_write_bytecode = True
-
-import cattaneo_mindlin as cm  # noqa: E402
+sys.dont_write_bytecode = True  # leave no __pycache__ in postproc/contact2d/
+from contact2d import cattaneo_mindlin as cm  # noqa: E402
 
 
 def integrate(f, lo, hi, n=200001):

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
-"""Tests of postproc/compare.py (SPEC section 9 measures) on synthetic output files.
+"""Tests of contact2d.compare and postproc/compare.py (SPEC section 9 measures) on synthetic output files.
 
-    /usr/bin/python3 tests/postproc/test_compare.py [-v]
+    PYTHONPATH=postproc /usr/bin/python3 tests/postproc/test_compare.py [-v]
 
 Each test writes small HDF5 files in the layout of SPEC section 8 (the subset compare.py reads)
 into a temporary directory, with fields whose errors are known in closed form.
@@ -22,12 +22,11 @@ import numpy as np
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-POSTPROC = os.path.join(ROOT, "postproc")
-sys.path.insert(0, POSTPROC)
+POSTPROC = os.path.join(ROOT, "postproc")   # the command-line script compare.py
 sys.dont_write_bytecode = True  # leave no __pycache__ in postproc/
 
-import compare as cmp  # noqa: E402
-import fem_q1  # noqa: E402
+from contact2d import compare as cmp  # noqa: E402
+from contact2d import fem_q1  # noqa: E402
 
 E, NU = 7.0e4, 0.3
 LAM = E * NU / ((1 + NU) * (1 - 2 * NU))

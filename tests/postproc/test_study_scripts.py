@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""Tests of the study scripts' command lines (postproc/hertz_study.py, paper_study.py, c2drun.py, and
-the products of every study script: postproc/outfile.py).
+"""Tests of the study scripts' command lines (postproc/hertz_study.py, paper_study.py, ...), of the
+package's run wrapper (contact2d.runner) and of the products of every study script (contact2d.outfile).
 
-    CONTACT2D=build/bin/contact2d /usr/bin/python3 tests/postproc/test_study_scripts.py [-v]
+    CONTACT2D=build/bin/contact2d PYTHONPATH=postproc /usr/bin/python3 tests/postproc/test_study_scripts.py [-v]
 
 What a study writes and what it reuses: tracked docs only when asked, runs reused only when they
 are finished runs of the same settings, tables and figures replaced only with --force, one line
@@ -22,8 +22,7 @@ from tmpcase import TempDirCase  # noqa: E402 (tests/postproc)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
-POSTPROC = os.path.join(ROOT, "postproc")
-sys.path.insert(0, POSTPROC)
+POSTPROC = os.path.join(ROOT, "postproc")   # the study scripts
 sys.dont_write_bytecode = True  # leave no __pycache__ in postproc/
 
 EXE = os.environ.get("CONTACT2D")
@@ -97,18 +96,19 @@ class HertzStudy(Base):
 
 @unittest.skipUnless(EXE, "set CONTACT2D=path/to/contact2d to run")
 class Reuse(Base):
-    """c2drun.run(reuse=True) and paper_study.py keep a file only when it is the run they would make."""
+    """contact2d.runner.run(reuse=True) and paper_study.py keep a file only when it is the run they
+    would make."""
 
     def attrs(self, h5):
         import h5py
-        from c2dh5 import parse_effective_deck
+        from contact2d.h5 import parse_effective_deck
         with h5py.File(h5, "r") as f:
             a = dict(f.attrs)
         return a, parse_effective_deck(a["effective_deck"])
 
-    def test_c2drun_reuses_only_the_same_finished_run(self):
+    def test_runner_reuses_only_the_same_finished_run(self):
         import h5py
-        import c2drun
+        from contact2d import runner as c2drun
         deck = os.path.join(self.dir, "patch.nml")
         shutil.copy(os.path.join(ROOT, "inputs", "patch_compression_p1.nml"), deck)
         h5 = self.path("patch.h5")
@@ -196,12 +196,36 @@ class Reuse(Base):
         self.assertEqual(self.attrs(gf0)[0]["status"], "converged")
 
 
-    def test_coulomb_path_study_reuses_only_the_same_problem(self):
+    def test_coulomb_path_reuses_only_the_same_problem(self):
+        # what coulomb_path_study.py does with --reuse, through the package it calls: a run kept by
+        # contact2d.runner.run(reuse=True), a GetFEM Coulomb reference by runner.keep_reference
         import contextlib
         import io
-        import coulomb_path_study as cps
+        from contact2d import runner
+        increments = 20
+        deck = os.path.join(ROOT, "inputs", "coulomb_sliding_p1.nml")
+
+        def staged(stroke):     # coulomb_path_study.path_sets("staged", stroke, f=1, level=0)
+            return {"mesh:level": 0, "solver:tol_residual": 1e-11, "output:xdmf": False, "solver:t_end": 6e-5,
+                    "dirichlet#1:times": [2e-6], "dirichlet#2:values": [0.0, stroke],
+                    "dirichlet#2:times": [2e-6, 6e-6]}
+
+        class cps:              # the study's two steps
+            @staticmethod
+            def contact2d(exe, mult, sets, h5, reuse):
+                res = runner.run(exe, deck, h5, sets, threads=1, reuse=reuse)
+                self.assertEqual(res.returncode, 0, res.stderr)
+
+            @staticmethod
+            def getfem(h5, ref, reuse):
+                if runner.keep_reference(ref, h5, reuse, program="getfem_coulomb", friction="coulomb",
+                                         increments=increments):
+                    return 0
+                return subprocess.run([sys.executable, os.path.join(POSTPROC, "getfem_coulomb.py"), h5, "-o", ref,
+                                       "--force", "--increments", str(increments)], capture_output=True).returncode
+
         h5, ref = self.path("run.h5"), self.path("ref.h5")
-        sliding, partial = (cps.path_sets("staged", cps.STROKES[s], 1, 0) for s in ("sliding", "partial"))
+        sliding, partial = staged(5.0e-3), staged(4.0e-4)
         cps.contact2d(EXE, "P1", sliding, h5, False)
         self.assertEqual(cps.getfem(h5, ref, False), 0)
         said = io.StringIO()
@@ -222,7 +246,7 @@ class Reuse(Base):
             subprocess.run([sys.executable, os.path.join(POSTPROC, "getfem_coulomb.py"), h5, "-o", ref, "--force",
                             "--increments", "5"], check=True, capture_output=True)
             self.assertEqual(cps.getfem(h5, ref, True), 0)
-            self.assertEqual(int(self.attrs(ref)[0]["increments"]), cps.INCREMENTS)
+            self.assertEqual(int(self.attrs(ref)[0]["increments"]), increments)
         said = said.getvalue()
         self.assertIn("rerunning %s: dirichlet#2:values" % h5, said)
         self.assertIn("recomputing %s: made for another problem" % ref, said)
@@ -248,7 +272,7 @@ class PaperStudy(Base):
 
 
 class OutFolder(Base):
-    """Every study script makes its folders with c2drun.out_dir: one line, not a traceback."""
+    """Every study script makes its folders with contact2d.runner.out_dir: one line, not a traceback."""
     CASES = (("paper_study.py", [], "--out"), ("hertz_study.py", [], "--out"), ("impact_study.py", [], "--out"),
              ("impact_study.py", ["--out", "{dir}"], "--figures"), ("stability_study.py", ["penalty"], "--out"), ("coulomb_path_study.py", [], "--out"),
              ("speed_accuracy.py", [], "--out"), ("stability_sweep.py", [], "--out"), ("bench_speed.py", [], "--out"),
@@ -339,7 +363,7 @@ class Products(Base):
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
-        from outfile import OutputRefused, save_figure
+        from contact2d.outfile import OutputRefused, save_figure
         fig = plt.figure()
         png = self.path("f.png")
         save_figure(fig, png)
@@ -355,11 +379,12 @@ class Products(Base):
 class Modules(Base):
     def test_modules_say_so(self):
         # the old modules printed nothing and exited 0 for --help (or any argument)
-        for name in ("c2dh5", "c2drun", "cattaneo_mindlin", "fem_q1", "hertz", "impact_measure", "lame", "outfile"):
+        for name in ("h5", "runner", "cattaneo_mindlin", "fem_q1", "hertz", "impact", "lame", "outfile"):
             for args in (["--help"], []):
                 with self.subTest(module=name, args=args):
-                    p = self.script(name + ".py", *args)
-                    self.one_line(p, r"^%s\.py is a module.*(postproc|tests)/\w+\.py" % name)
+                    p = subprocess.run([sys.executable, "-B", "-m", "contact2d." + name] + args,
+                                       capture_output=True, text=True, timeout=60)
+                    self.one_line(p, r"^contact2d\.%s is a module, not a script \(docs/postproc\.md\)" % name)
                     self.assertEqual(p.stdout, "")
 
 

@@ -26,10 +26,12 @@ import time
 import h5py
 import numpy as np
 
-# postproc/c2dh5.py (the project's reader) is read-only for the tests; we use its deck parser.
-_POSTPROC = os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir, "postproc")
-sys.path.insert(0, os.path.normpath(_POSTPROC))
-from c2dh5 import parse_effective_deck  # noqa: E402  (after the sys.path insertion)
+# the project's reader (postproc/contact2d/h5.py, on PYTHONPATH by ctest): its deck parser
+try:
+    from contact2d.h5 import parse_effective_deck
+except ImportError as _exc:   # run by hand without PYTHONPATH: one line saying what to set
+    raise SystemExit("c2dtest: cannot import the package contact2d (%s): run the test through ctest, or set "
+                     "PYTHONPATH=<repository>/postproc" % _exc)
 
 __all__ = ["Test", "Run", "parse_effective_deck", "q1_plane_strain", "exact_dt_limit"]
 

@@ -15,16 +15,11 @@ the normal conditions per dual cell with D (tridiagonal, from the abscissae) and
 Friction is judged on the tangential displacement of the last increment, psi = (u - u_prev) . t
 (u_prev = 0 for one increment from rest).
 """
-import os
-import sys
-
 import numpy as np
 
 import c2dtest
 
-sys.path.insert(0, os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
-                                                 "postproc")))
-import fem_q1  # noqa: E402
+from contact2d import fem_q1
 
 NAMES = ("normal_feasibility", "complementarity", "friction_feasibility", "equilibrium")
 

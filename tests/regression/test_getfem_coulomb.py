@@ -23,11 +23,12 @@ import sys
 
 import c2dtest
 
+from contact2d import fem_q1
+from contact2d.compare import compare
+
+# postproc/: the command-line scripts run here (compare.py, getfem_reference.py, getfem_coulomb.py)
 POSTPROC = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
                                          "postproc"))
-sys.path.insert(0, POSTPROC)
-from compare import compare  # noqa: E402
-import fem_q1  # noqa: E402
 
 PARTIAL = ["--set", "dirichlet#1:times=8e-6", "--set", "dirichlet#2:values=0,4e-4",
            "--set", "dirichlet#2:times=8e-6,2.4e-5", "--set", "output:snapshot_times=8e-6"]

@@ -5,7 +5,7 @@ elastic block; --scene cylinder: inputs/hertz_cylinder_<m>.nml, an elastic half-
 plane (a curved Gamma_c). Both are half models on Gmsh meshes graded towards the contact.
 With the run's own total normal force P (2 x the half model's sum), 2D Hertz gives
     a = sqrt(4 P R / (pi E*)), p0 = 2 P / (pi a), E* = E / (1 - nu^2)
-(postproc/hertz.py). Checked: convergence, a/R <= 0.1, the run's contact half-width (farthest node
+(contact2d.hertz). Checked: convergence, a/R <= 0.1, the run's contact half-width (farthest node
 in contact) within one boundary element of a, the pressure at the centre within 1 % of p0, no
 penetration; for the circle, /contact/gap and /contact/normal against |x - C| - R and
 -(x - C)/|x - C| computed here; the pressure's sign: P0 never negative, P1 tensile just beyond the
@@ -16,14 +16,12 @@ error decreasing with level is the study's
 import os
 import re
 import shutil
-import sys
 
 import numpy as np
 
 import c2dtest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postproc"))
-import hertz  # noqa: E402
+from contact2d import hertz
 
 
 def body(t):

@@ -3,7 +3,7 @@
 
 inputs/impact_bar_<m>.nml: a block of height L with roller sides (uniaxial strain) moving with
 -v0 hits the plane after a gap g0. Exact (deck header): contact from t0 = g0/v0 for 2L/c,
-pressure rho c v0, rebound velocity +v0. Measured with postproc/impact_measure.py on a history
+pressure rho c v0, rebound velocity +v0. Measured with contact2d.impact on a history
 sample at every step, at levels 2 (shipped), 3 and 4:
 - the run is dynamic: status 'dynamic', no convergence test, ends at t_end;
 - initial kinetic energy = 1/2 rho L lx v0^2 (the start v^(-1/2) = v0);
@@ -21,8 +21,8 @@ plateau rho c v0 / k_p (spring bed in series with the bar) within 5 %, balance <
 import numpy as np
 
 import c2dtest
-from c2dh5 import Run
-from impact_measure import exact, measure
+from contact2d.h5 import Run
+from contact2d.impact import exact, measure
 
 LEVELS = (2, 3, 4)
 SHIPPED = 2

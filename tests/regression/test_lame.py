@@ -4,20 +4,17 @@ inputs/lame_cavity_<m>.nml: a quarter ring (ra = 1, rb = 2 mm) inside the rigid 
 (obstacle = 'circle', body inside), frictionless, pressure p_i = 100 MPa on its inner boundary
 (a 'normal' traction on a curved boundary). The whole outer boundary stays in contact and the
 contact pressure is p_c = p_i 2 (1 - nu) / (1 + (1 - 2 nu) rb^2 / ra^2) (Lame with u_r(rb) = 0,
-derived in the deck header; postproc/lame.py). Checked: every contact node in contact, the
+derived in the deck header; contact2d.lame). Checked: every contact node in contact, the
 pressure everywhere within 0.06 % of p_c at level 3, the relative energy-norm error (exact field
 against the run's, 2 x 2 Gauss) converging at a rate >= 0.98 between levels (Q1 optimum: 1),
 the circle's normals n_i = x_i / |x_i| and gaps rb - |x_i|.
 """
-import os
-import sys
 
 import numpy as np
 
 import c2dtest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postproc"))
-import lame  # noqa: E402
+from contact2d import lame
 
 LEVELS = (1, 2, 3)
 

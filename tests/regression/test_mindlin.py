@@ -25,15 +25,11 @@ postproc/mindlin.py), half-width against Cattaneo-Mindlin and centre against 0, 
 contact edge h. The status labels are not used for it: a node counts as slip only at the limit
 to 1e-8, so one at 0.99 of it is 'stick' and the labelled zone jumps by a node between runs.
 """
-import os
-import sys
-
 import numpy as np
 
 import c2dtest
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "postproc"))
-import mindlin  # noqa: E402
+from contact2d import mindlin
 
 E, NU, MU_F = 7.0e4, 0.3, 0.3
 SLIP_TOL = 1.0e-8        # SPEC 3: |F_t| >= (1 - 1e-8) limit counts as slip

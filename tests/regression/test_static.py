@@ -35,12 +35,12 @@ import numpy as np
 
 import c2dtest
 
+import static_kkt  # tests/regression: the KKT residuals from the file alone
+from contact2d import fem_q1, hertz
+
+# postproc/: the command-line scripts run here (compare.py, getfem_reference.py, getfem_coulomb.py)
 POSTPROC = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
                                          "postproc"))
-sys.path.insert(0, POSTPROC)
-import fem_q1  # noqa: E402
-import hertz  # noqa: E402
-import static_kkt  # noqa: E402  (tests/regression: the KKT residuals from the file alone)
 
 FRICTIONLESS = ["--set", "contact:friction='frictionless'", "--set", "contact:threshold=0"]
 E, NU = 7.0e4, 0.3

@@ -34,10 +34,11 @@ import numpy as np
 import c2dtest
 import static_kkt
 
+from contact2d import fem_q1
+
+# postproc/: the command-line scripts run here (compare.py, getfem_reference.py, getfem_coulomb.py)
 POSTPROC = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, os.pardir,
                                          "postproc"))
-sys.path.insert(0, POSTPROC)
-import fem_q1  # noqa: E402
 
 E, NU = 7.0e4, 0.3
 TOL = 1e-12

@@ -1,6 +1,6 @@
 """Vectorised numpy helpers for Q1 (bilinear quadrilateral) fields, plane strain, 2x2 Gauss.
 
-Used by postproc/compare.py (SPEC section 9). Conventions follow the output contract (SPEC 8):
+Used by contact2d.compare (SPEC section 9). Conventions follow the output contract (SPEC 8):
 connectivity is 0-based here (callers subtract 1 from the file's ids), counter-clockwise from
 the bottom-left node; element dofs are ordered (u1x, u1y, u2x, u2y, ...).
 
@@ -270,6 +270,6 @@ def pieces_difference_norms(pa, pb, rtol=1e-10):
 if __name__ == "__main__":
     import sys
 
-    print("fem_q1.py is a module, not a script: it is used by "
-          "postproc/compare.py, lame.py and tests/regression/test_static.py", file=sys.stderr)
+    print("contact2d.fem_q1 is a module, not a script (docs/postproc.md): it is used by "
+          "contact2d.compare, contact2d.lame and tests/regression/test_static.py", file=sys.stderr)
     sys.exit(2)

@@ -1,12 +1,12 @@
 #!/usr/bin/python3
-"""Self-test of postproc/getfem_reference.py (standard library unittest; needs python3-getfem).
+"""Self-test of contact2d.getfem_reference (standard library unittest; needs python3-getfem).
 
-    /usr/bin/python3 postproc/test_getfem_reference.py [-v]
+    PYTHONPATH=postproc /usr/bin/python3 tests/postproc/test_getfem_reference.py [-v]
 
 The inputs are synthetic contact2d-layout files (mesh, effective deck, contact boundary) written
 here, so the test needs neither the contact2d binary nor a previous run. It checks the reference
 against closed-form answers (SPEC section 7) and against itself (P1 nodal brick = basic brick),
-and the -o rules (postproc/outfile.py) of getfem_reference.py and getfem_coulomb.py.
+and the -o rules (contact2d.outfile) of postproc/getfem_reference.py and getfem_coulomb.py.
 """
 import os
 import subprocess
@@ -17,9 +17,9 @@ import unittest
 import h5py
 import numpy as np
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-SCRIPT = os.path.join(HERE, "getfem_reference.py")
-sys.path.insert(0, HERE)
+# postproc/: the command-line scripts getfem_reference.py and getfem_coulomb.py
+POSTPROC = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "postproc")
+SCRIPT = os.path.join(POSTPROC, "getfem_reference.py")
 
 E, NU = 7.0e4, 0.3
 
@@ -233,7 +233,7 @@ class OutputRefusals(unittest.TestCase):
 class CoulombOutputRefusals(OutputRefusals):
     """The same -o rules for getfem_coulomb.py (the old code wrote over the input or an existing file,
     in place: h5py mode 'w', then 'r+'), on an input it solves (a Coulomb patch)."""
-    script = os.path.join(HERE, "getfem_coulomb.py")
+    script = os.path.join(POSTPROC, "getfem_coulomb.py")
 
     def write_input(self, path):
         write_input(path, 1.0, 0.5, 4, 2, PATCH, dict(contact("P1", "coulomb"), friction_coefficient=0.3))

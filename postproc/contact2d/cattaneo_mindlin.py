@@ -2,7 +2,7 @@
 """Hertz line contact and Cattaneo-Mindlin partial slip: the closed forms the mindlin_cylinder
 scene (issue 11, waiting for the curved geometry of issue 10) will be compared with.
 
-    from cattaneo_mindlin import hertz, stick_half_width, shear
+    from contact2d.cattaneo_mindlin import hertz, stick_half_width, shear
     a, p0 = hertz(P, R, E, nu)            # elastic cylinder (plane strain) on a rigid flat
     c = stick_half_width(a, Q, mu, P)     # c = a sqrt(1 - Q / (mu P))
     q = shear(x, a, c, mu, p0)            # q(x) = mu p0 (sqrt(1 - x^2/a^2) - (c/a) sqrt(1 - x^2/c^2))
@@ -54,6 +54,6 @@ def dundurs_beta_rigid(nu):
 if __name__ == "__main__":
     import sys
 
-    print("cattaneo_mindlin.py is a module, not a script: it is used by "
-          "postproc/mindlin.py and tests/postproc/test_cattaneo_mindlin.py", file=sys.stderr)
+    print("contact2d.cattaneo_mindlin is a module, not a script (docs/postproc.md): it is used by "
+          "contact2d.mindlin and tests/postproc/test_cattaneo_mindlin.py", file=sys.stderr)
     sys.exit(2)

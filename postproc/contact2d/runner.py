@@ -1,6 +1,6 @@
 """Run contact2d from Python scripts (studies, sweeps, benchmarks).
 
-    from c2drun import find_exe, run, strip_group, parse_levels, out_dir
+    from contact2d.runner import find_exe, run, strip_group, parse_levels, out_dir
     res = run(find_exe(), "inputs/baillet_sassi_2002_p1.nml", "out.h5", {"mesh:level": 3})
     res.returncode, res.seconds, res.stderr
     parse_levels("0-2") == parse_levels("0,1,2") == [0, 1, 2]   # ValueError (one line) otherwise
@@ -10,10 +10,10 @@ run(..., reuse=True) keeps an existing output only when reuse_problem() finds no
 a finished contact2d run (status in FINISHED, per method) of the same deck text, by the same
 method, whose effective deck holds every value of `sets` (the &output group excepted: it does not
 change the results); otherwise the run is redone and one line says why. reference_problem() is
-the same question for a GetFEM reference (postproc/getfem_reference.py, getfem_coulomb.py) of a
+the same question for a GetFEM reference (contact2d.getfem_reference, contact2d.getfem_coulomb) of a
 contact2d output, and keep_reference() asks it for --reuse and says why a reference is remade.
 
-Only the standard library is needed, and h5py (postproc/c2dh5.py) for reuse.
+Only the standard library is needed, and h5py (contact2d.h5) for reuse.
 """
 import os
 import re
@@ -23,7 +23,7 @@ import time
 from dataclasses import dataclass
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parent.parent.parent   # postproc/contact2d/runner.py: the repository
 
 
 def find_exe(explicit=None):
@@ -76,12 +76,12 @@ def _same_value(want, have):
 def _root_attrs(path, needs=()):
     """An HDF5 file's root attributes as text, or None when it cannot be read or lacks a dataset of
     `needs` (written last: a file cut short has not got it)."""
-    import h5py
+    from .h5 import Run   # h5py only where a file is read
     try:
-        with h5py.File(str(path), "r") as f:
-            if not all(name in f for name in needs):
+        with Run(path) as run:
+            if not all(run.has(name) for name in needs):
                 return None
-            return {k: v.decode() if isinstance(v, bytes) else str(v) for k, v in f.attrs.items()}
+            return {k: str(run.attr(k)) for k in run.attrs}
     except OSError:
         return None
 
@@ -89,8 +89,7 @@ def _root_attrs(path, needs=()):
 def reuse_problem(output, deck, sets=None, method="explicit", statuses=None):
     """None when output is a finished run that run(deck, output, sets) would make again, else why not
     (a few words). statuses: the accepted final statuses (default FINISHED[method])."""
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
-    from c2dh5 import parse_effective_deck
+    from .h5 import parse_effective_deck   # h5py only where a file is read
 
     attrs = _root_attrs(output)
     if attrs is None:
@@ -225,7 +224,6 @@ def strip_group(deck_text, group):
 
 
 if __name__ == "__main__":
-    print("c2drun.py is a module, not a script: it is used by "
-          "postproc/paper_study.py, hertz_study.py, speed_accuracy.py, impact_study.py, bench_speed.py "
-          "and the other study scripts", file=sys.stderr)
+    print("contact2d.runner is a module, not a script (docs/postproc.md): it is used by "
+          "the study scripts (postproc/*_study.py, bench_*.py, ...)", file=sys.stderr)
     sys.exit(2)

@@ -1,6 +1,6 @@
 """The scripts' own output files: nothing a user owns is overwritten silently (module, no script).
 
-    from outfile import OutputRefused, check_target, replacing
+    from contact2d.outfile import OutputRefused, check_target, replacing
     check_target("out.json", inputs=["a.h5", "b.h5"], force=args.force)   # before any work
     with replacing("out.json", force=args.force) as tmp:                   # after the work
         write the whole file to tmp (a temporary file beside the target)
@@ -110,6 +110,6 @@ def save_figure(fig, path, force=False, **kwargs):
 
 
 if __name__ == "__main__":
-    print("outfile.py is a module (used by postproc/compare.py, postproc/getfem_reference.py and the "
-          "study scripts), not a script", file=sys.stderr)
+    print("contact2d.outfile is a module, not a script (docs/postproc.md): it is used by "
+          "postproc/compare.py, getfem_reference.py, plot.py and the study scripts", file=sys.stderr)
     sys.exit(2)

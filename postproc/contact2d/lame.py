@@ -1,6 +1,6 @@
 """Lame measures of a run of inputs/lame_cavity_<m>.nml (quarter ring in a rigid cavity).
 
-    from lame import measure
+    from contact2d.lame import measure
     m = measure("lame_cavity_p1.h5")  # dict: pc, p (pressure field), p_err_max, energy_rel, h, ...
 
 Exact solution (the deck header): u = (A + B / r^2) (x, y), B = -A rb^2,
@@ -8,17 +8,15 @@ A = -p_i / (2 (lambda + mu) + 2 mu rb^2 / ra^2), contact pressure p_c = -sigma_r
 energy_rel = sqrt(a(u - u_h, u - u_h) / a(u, u)) with a(v, v) = int eps(v) : C : eps(v), both
 integrated with 2 x 2 Gauss on the run's (polygonal) mesh, the exact gradient evaluated at the
 physical Gauss points. h = the largest element edge. ra, rb, p_i, E, nu come from the effective deck
-and the mesh (ra = min |x|, rb = max |x|). Only numpy and h5py (and postproc/fem_q1.py).
+and the mesh (ra = min |x|, rb = max |x|). Only numpy and h5py (and contact2d.fem_q1).
 """
-import os
 import sys
 
-import h5py
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import fem_q1  # noqa: E402
-from hertz import _attr, _deck_value  # noqa: E402
+from . import fem_q1
+from .h5 import Run
+from .hertz import _deck_value
 
 
 def exact(ra, rb, pi, E, nu):
@@ -30,14 +28,14 @@ def exact(ra, rb, pi, E, nu):
 
 
 def measure(path):
-    with h5py.File(path, "r") as f:
-        eff = _attr(f.attrs["effective_deck"])
-        x = f["mesh/coordinates"][()]
-        conn = f["mesh/connectivity"][()] - 1
-        u = f["final/displacement"][()]
-        p = f["final/contact/pressure"][()]
-        status = f["final/contact/status"][()]
-        conv = int(f.attrs["converged"])
+    with Run(path) as run:
+        eff = run.attr("effective_deck")
+        x = run.coordinates
+        conn = run.connectivity - 1
+        u = run.displacement
+        p = run.contact("pressure")
+        status = run.contact("status")
+        conv = int(run.attr("converged"))
     E = float(_deck_value(eff, "material", "young"))
     nu = float(_deck_value(eff, "material", "poisson"))
     pi = -float(_deck_value(eff, "traction", "values").split(",")[0])
@@ -66,6 +64,6 @@ def measure(path):
 
 
 if __name__ == "__main__":
-    print("lame.py is a module, not a script: it is used by "
+    print("contact2d.lame is a module, not a script (docs/postproc.md): it is used by "
           "postproc/hertz_study.py and tests/regression/test_lame.py", file=sys.stderr)
     sys.exit(2)

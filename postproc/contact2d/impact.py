@@ -1,7 +1,8 @@
 """Measures of an impact_bar run against the exact 1D wave solution (issue 12, docs/impact.md).
 
-    from impact_measure import exact, measure
-    with c2dh5.Run("impact_bar_p1.h5") as run:
+    from contact2d import Run
+    from contact2d.impact import exact, measure
+    with Run("impact_bar_p1.h5") as run:
         ex = exact(run)        # t0, duration 2L/c, pressure rho c v0, v0, ... from the deck
         me = measure(run)      # the same quantities measured on the history and final state
 
@@ -15,7 +16,7 @@ force of step n, the force at t_n that makes u^(n+1) admissible. So the force hi
 at time - dt. A force F^n acts on the impulse F^n dt, so contact lasts (number of steps with a
 non-zero force) x dt, from the first force step t_first to t_last + dt.
 
-Only numpy and h5py (through c2dh5) are needed.
+Only numpy and h5py (through contact2d.h5) are needed.
 """
 import math
 
@@ -101,6 +102,6 @@ def measure(run, exact_answer=None):
 if __name__ == "__main__":
     import sys
 
-    print("impact_measure.py is a module, not a script: it is used by "
+    print("contact2d.impact is a module, not a script (docs/postproc.md): it is used by "
           "postproc/impact_study.py and tests/regression/test_impact.py", file=sys.stderr)
     sys.exit(2)

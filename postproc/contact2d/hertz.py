@@ -1,6 +1,6 @@
 """Hertz measures of a contact2d run of inputs/hertz_*.nml (half models, symmetry on x = 0).
 
-    from hertz import measure
+    from contact2d.hertz import measure
     m = measure("hertz_indenter_p1.h5")   # dict: P, a, p0, p0_fe, a_fe, h_edge, l2, l2_rel, p_min, ...
 
 With the run's own total normal force P (per unit thickness, twice the half model's sum):
@@ -12,12 +12,9 @@ contact zone, docs/geometry.md), nonzero_separated the separated nodes where |p|
 samples per segment against the exact p at the horizontal coordinate x of each sample.
 Only numpy and h5py.
 """
-import h5py
 import numpy as np
 
-
-def _attr(v):
-    return v.decode() if isinstance(v, bytes) else str(v)
+from .h5 import Run
 
 
 def _deck_value(text, group, name):
@@ -41,16 +38,16 @@ def hertz(P, R, E, nu):
 
 
 def measure(path):
-    with h5py.File(path, "r") as f:
-        eff = _attr(f.attrs["effective_deck"])
-        x = f["mesh/coordinates"][()]
-        nodes = f["contact/nodes"][()] - 1
-        fn = f["final/contact/normal_force"][()]
-        p = f["final/contact/pressure"][()]
-        status = f["final/contact/status"][()]
-        mult = _attr(f.attrs["multiplier"])
-        conv = int(f.attrs["converged"])
-        nel = int(f.attrs["element_count"])
+    with Run(path) as run:
+        eff = run.attr("effective_deck")
+        x = run.coordinates
+        nodes = run.contact_nodes
+        fn = run.contact("normal_force")
+        p = run.contact("pressure")
+        status = run.contact("status")
+        mult = run.attr("multiplier")
+        conv = int(run.attr("converged"))
+        nel = int(run.attr("element_count"))
     E = float(_deck_value(eff, "material", "young"))
     nu = float(_deck_value(eff, "material", "poisson"))
     if "'circle'" in eff:
@@ -92,6 +89,6 @@ def measure(path):
 if __name__ == "__main__":
     import sys
 
-    print("hertz.py is a module, not a script: it is used by "
-          "postproc/hertz_study.py, lame.py and tests/regression/test_hertz.py", file=sys.stderr)
+    print("contact2d.hertz is a module, not a script (docs/postproc.md): it is used by "
+          "postproc/hertz_study.py, contact2d.lame and tests/regression/test_hertz.py", file=sys.stderr)
     sys.exit(2)
