@@ -404,7 +404,7 @@ contains
 
 
    !> The summary's contact lines shared by explicit and static runs: status counts, totals and
-   !> the extent of the contact zone (README "What a run prints").
+   !> the extent of the contact zone (docs/quickstart.md "What a run prints").
    subroutine summary_contact_status(c, status)
       type(contact_t), intent(in) :: c
       integer, intent(in) :: status(:)
