@@ -414,9 +414,13 @@ contains
       real(wp), intent(in) :: dt, time0
       integer, intent(in) :: k
       integer(i8), intent(in) :: step0
+      real(wp) :: r
       step = huge(1_i8)
-      if (k <= deck%output%nsnapshot) step = max(step0 + 1, step0 + ceiling((deck%output%snapshot_times(k) - time0)/dt &
-                                                                            - 1.0e-9_wp, i8))
+      if (k > deck%output%nsnapshot) return
+      ! steps to the snapshot; beyond 2**60 steps it is never reached (and ceiling(r, i8) would
+      ! overflow: snapshot_times = 1e30 s trapped in the Debug build)
+      r = (deck%output%snapshot_times(k) - time0)/dt - 1.0e-9_wp
+      if (r < 2.0_wp**60) step = max(step0 + 1, step0 + ceiling(r, i8))
    end function next_snapshot
 
    !> '' when the run's file went to the output, else (a run that did not reach its end would
