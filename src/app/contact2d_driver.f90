@@ -667,7 +667,7 @@ contains
          write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s (set-up '//fixed(timings(1), 3)// &
             ', steps '//fixed(timings(2), 3)//', contact '//fixed(timings(3), 3)//', output '//fixed(timings(4), 3)//')'
          write (output_unit, '(a)') ' element-steps / s   '//sci(rate)
-         write (output_unit, '(a)') ' output              '//path
+         write (output_unit, '(a)') ' output              '//printable(path)
          write (output_unit, '(a)') repeat('-', 72)
       end associate
    end subroutine summary

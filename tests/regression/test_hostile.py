@@ -129,6 +129,8 @@ def nan_cases():
         ("origin_marker", "c", "contact:origin=1.7976931348623157e308,1.7976931348623157e308",
          r"contact:origin = 1\.7976931348623157e308 is out of range"),
         ("threshold_minus_1e999", "c", "contact:threshold=-1e999", r"contact:threshold = -1e999 is out of range"),
+        # a tiny bad value keeps its exponent letter in the message (es12.5 printed -1.00000-200)
+        ("young_minus_1e-200", "u", "material:young=-1e-200", r"material:young = -1e-200 must be > 0"),
     ]
     return [(name, base, ["--set", s], None, pat, {}) for name, base, s, pat in rows]
 
