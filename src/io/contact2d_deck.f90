@@ -13,7 +13,11 @@
 !> variable: a string is read into a local of length line_len and checked with too_long()
 !> against its field's length; a real is added to any_not_finite() in validate() (it uses
 !> check_finite of contact2d_checks, which must run before any comparison of the value), then
-!> range-checked; derived quantities are checked in the model with check_positive.
+!> range-checked; derived quantities are checked in the model with check_positive. Every name
+!> goes into group_variables (suggestions for misspellings), a logical also into logical_vars.
+!> Before any of this, value_problem reads every value of the text (deck and --set): literals
+!> beyond the double range or equal to the 'not given' marker are refused there, so a marker
+!> left in a variable after the read always means "not given".
 module contact2d_deck
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use contact2d_kinds, only: wp
