@@ -4,7 +4,7 @@ module contact2d_driver
    use, intrinsic :: iso_fortran_env, only: output_unit, error_unit, compiler_version
    use contact2d_kinds, only: wp, i8
    use contact2d_version, only: program_name, program_version
-   use contact2d_strings, only: str, fixed, sci
+   use contact2d_strings, only: str, fixed, sci, printable
    use contact2d_cli, only: cli_t, cli_parse, usage
    use contact2d_deck, only: deck_t, deck_read, deck_blame, edge_load_cfg_t
    use contact2d_model, only: model_t, model_build, beside
@@ -97,14 +97,14 @@ contains
       errmsg = initial_velocity_warning(model%load%free, deck%initial%velocity)
       if (len(errmsg) > 0) call model%warnings%add(errmsg)
 
-      write (output_unit, '(a)') program_name//' '//program_version//': '//cli%deck//' -> '//cli%output
+      write (output_unit, '(a)') program_name//' '//program_version//': '//printable(cli%deck//' -> '//cli%output)
       if (.not. cli%quiet) then
          write (output_unit, '(a)') '--- effective deck ---'
          write (output_unit, '(a)', advance='no') deck%effective
          write (output_unit, '(a)') '----------------------'
       end if
       do i = 1, model%warnings%n
-         write (error_unit, '(a)') program_name//': warning: '//trim(model%warnings%items(i))
+         write (error_unit, '(a)') program_name//': warning: '//printable(trim(model%warnings%items(i)))
       end do
       if (model%mesh%nx > 0) then
          errmsg = str(model%mesh%nx)//' x '//str(model%mesh%ny)//' ='
@@ -426,9 +426,13 @@ contains
       real(wp), intent(in) :: dt, time0
       integer, intent(in) :: k
       integer(i8), intent(in) :: step0
+      real(wp) :: r
       step = huge(1_i8)
-      if (k <= deck%output%nsnapshot) step = max(step0 + 1, step0 + ceiling((deck%output%snapshot_times(k) - time0)/dt &
-                                                                            - 1.0e-9_wp, i8))
+      if (k > deck%output%nsnapshot) return
+      ! steps to the snapshot; beyond 2**60 steps it is never reached (and ceiling(r, i8) would
+      ! overflow: snapshot_times = 1e30 s trapped in the Debug build)
+      r = (deck%output%snapshot_times(k) - time0)/dt - 1.0e-9_wp
+      if (r < 2.0_wp**60) step = max(step0 + 1, step0 + ceiling(r, i8))
    end function next_snapshot
 
    !> '' when the run's file went to the output, else (a run that did not reach its end would
@@ -446,7 +450,8 @@ contains
    subroutine fail(code, msg)
       integer, intent(in) :: code
       character(len=*), intent(in) :: msg
-      write (error_unit, '(a)') program_name//': error: '//msg
+      ! one line whatever the message quotes (a --set value with a newline, an escape sequence)
+      write (error_unit, '(a)') program_name//': error: '//printable(msg)
       call opath%abandon(keep_partial)
       stop code, quiet=.true.
    end subroutine fail
@@ -465,7 +470,7 @@ contains
       integer, intent(in) :: code
       character(len=*), intent(in) :: msg
       logical, intent(in) :: keep
-      write (error_unit, '(a)') program_name//': error: '//msg
+      write (error_unit, '(a)') program_name//': error: '//printable(msg)
       call opath%abandon(keep)
       flush (output_unit)
       flush (error_unit)
@@ -674,7 +679,7 @@ contains
          write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s (set-up '//fixed(timings(1), 3)// &
             ', steps '//fixed(timings(2), 3)//', contact '//fixed(timings(3), 3)//', output '//fixed(timings(4), 3)//')'
          write (output_unit, '(a)') ' element-steps / s   '//sci(rate)
-         write (output_unit, '(a)') ' output              '//path
+         write (output_unit, '(a)') ' output              '//printable(path)
          write (output_unit, '(a)') repeat('-', 72)
       end associate
    end subroutine summary

@@ -129,7 +129,7 @@ contains
          stat = 1
          errmsg = deck%path//': solver: dt = '//str(model%dt)//' s exceeds '// &
                   trim(merge('the penalty-adjusted dt_critical', 'dt_critical                     ', model%contact%penalty))// &
-                  ' = '//str(model%dt_critical)//' s (ratio '//str(real(nint(1000*model%dt/model%dt_critical), wp)/1000)// &
+                  ' = '//str(model%dt_critical)//' s (ratio '//str(anint(1000*(model%dt/model%dt_critical))/1000)// &
                   '); set solver:allow_unstable = .true. to run anyway'
          return
       end if

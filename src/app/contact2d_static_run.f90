@@ -410,8 +410,8 @@ contains
       integer, intent(in) :: status(:)
       write (output_unit, '(a)') ' contact             '//c%multiplier_name()//', '//str(c%nc)//' nodes: '// &
          str(count(status == 1))//' stick, '//str(count(status == 2))//' slip, '// &
-         str(count(status == 0))//' separated; total F_n = '//sci(c%normal_total)//' N, F_t = '// &
-         sci(c%tangential_total)//' N'
+         str(count(status == 0))//' separated; total F_n = '//sci(c%normal_total)//' N/mm, F_t = '// &
+         sci(c%tangential_total)//' N/mm'
       if (any(status > 0)) then
          write (output_unit, '(a)') '                     in contact from abscissa '// &
             sci(minval(c%abscissa, mask=status > 0))//' to '//sci(maxval(c%abscissa, mask=status > 0))//' mm'

@@ -6,8 +6,9 @@
 !>      (-ffpe-trap=invalid,overflow) comparing a NaN traps, these checks do not (they classify
 !>      the bits with ieee_arithmetic and compare nothing). They refuse NaN, +-Infinity and
 !>      magnitudes above `max_magnitude` (1e30 in the user's units: beyond any physical input,
-!>      and low enough that set-up products cannot overflow). Array entries equal to +-huge
-!>      are the deck's 'not given' marker and are skipped.
+!>      and low enough that set-up products cannot overflow). Values equal to +-huge are the
+!>      deck's 'not given' marker and are skipped: the deck reader refuses a typed marker (and
+!>      any literal beyond the double range) from the text before the read (value_problem).
 !>   2. then the variable's own range: `check_range('group:variable', x, lo, hi, errmsg)` for a
 !>      closed interval, or a plain test with its own message.
 !>   3. derived quantities (masses, element stiffness, dt_critical) are checked before use with

@@ -13,19 +13,26 @@
 !> variable: a string is read into a local of length line_len and checked with too_long()
 !> against its field's length; a real is added to any_not_finite() in validate() (it uses
 !> check_finite of contact2d_checks, which must run before any comparison of the value), then
-!> range-checked; derived quantities are checked in the model with check_positive.
+!> range-checked; derived quantities are checked in the model with check_positive. Every name
+!> goes into group_variables (suggestions for misspellings), a logical also into logical_vars.
+!> Before any of this, value_problem reads every value of the text (deck and --set): literals
+!> beyond the double range or equal to the 'not given' marker are refused there, so a marker
+!> left in a variable after the read always means "not given".
 module contact2d_deck
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite, ieee_is_nan
    use contact2d_kinds, only: wp
-   use contact2d_strings, only: str, lower, join
+   use contact2d_strings, only: str, lower, join, printable
    use contact2d_material, only: material_t, material_init
    use contact2d_checks, only: check_finite, check_range, max_magnitude
    use contact2d_sys, only: sys_path_info, sys_strerror, kind_missing, kind_file, kind_dangling, kind_names
    use, intrinsic :: iso_c_binding, only: c_long_long
+   use, intrinsic :: ieee_exceptions, only: ieee_status_type, ieee_get_status, ieee_set_status, &
+                                            ieee_set_halting_mode, ieee_usual
    implicit none
    private
    public :: deck_t, deck_read, deck_blame, mesh_cfg_t, material_cfg_t, edge_load_cfg_t, contact_cfg_t
    public :: solver_cfg_t, output_cfg_t, initial_cfg_t, unset, max_stages, max_points, edge_id, group_names
+   public :: group_variables
 
    !> Marks a real variable the deck did not set.
    real(wp), parameter :: unset = huge(1.0_wp)
@@ -43,7 +50,33 @@ module contact2d_deck
    character(len=9), parameter :: group_names(8) = [character(len=9) :: &
                                                     'mesh', 'material', 'dirichlet', 'traction', 'contact', 'solver', 'output', &
                                                     'initial']
+   !> The plane obstacle y = 0 with its normal +y when the deck gives no obstacle_point/normal.
+   real(wp), parameter :: default_obstacle_point(2) = [0.0_wp, 0.0_wp], default_obstacle_normal(2) = [0.0_wp, 1.0_wp]
    character(len=6), parameter :: edges(4) = [character(len=6) :: 'bottom', 'right', 'top', 'left']
+   !> The variables of each group (of group_names), as the namelists in read_mesh, ...,
+   !> read_output declare them (test_deck checks that each is accepted); for suggestions.
+   character(len=*), parameter :: group_variables(8) = [character(len=320) :: &
+      'lx ly nx ny level file', &
+      'young poisson density', &
+      'edge boundary xmin xmax ymin ymax component values times', &
+      'edge boundary xmin xmax ymin ymax component values times', &
+      'edge boundary xmin xmax ymin ymax obstacle obstacle_point obstacle_normal obstacle_center '// &
+      'obstacle_radius obstacle_side origin direction multiplier friction friction_coefficient threshold '// &
+      'threshold_abscissa threshold_values tresca_scope method penalty_stiffness', &
+      'dt dt_factor allow_unstable t_ramp t_end max_steps damping alpha damping_interval tol_residual '// &
+      'tol_kinetic check_interval power_iterations dt_limit mass_scaling method static_increments '// &
+      'compare_static convergence_test', &
+      'history_interval xdmf progress snapshot_times', &
+      'velocity']
+
+   !> The logical variables (group:variable). Their values are checked as text before the
+   !> namelist read: Fortran reads any word whose first letter after an optional '.' is T or F
+   !> as a logical (F2018 13.7.3), so `xdmf = fish` would read as .false.
+   character(len=*), parameter :: logical_vars(4) = [character(len=21) :: 'solver:allow_unstable', &
+                                                      'solver:compare_static', 'output:xdmf', 'output:progress']
+   !> The spellings of a logical value accepted (lower case).
+   character(len=*), parameter :: logical_words(10) = [character(len=7) :: '.true.', '.false.', 't', 'f', &
+                                                        '.t.', '.f.', '.t', '.f', 'true', 'false']
 
    !> &mesh: structured rectangle [0, lx] x [0, ly] with (nx 2^level) x (ny 2^level) elements,
    !> or a Gmsh file (.msh, or .geo meshed at start-up) refined `level` times (docs/geometry.md).
@@ -90,8 +123,10 @@ module contact2d_deck
       character(len=8) :: obstacle_side = 'outside'  !< body 'outside' (indenter) | 'inside' (cavity)
       real(wp) :: xmin = -unset, xmax = unset      !< x range of the candidate boundary [mm]
       real(wp) :: ymin = -unset, ymax = unset      !< y range of the candidate boundary [mm]
-      real(wp) :: obstacle_point(2) = [0.0_wp, 0.0_wp]   !< a point P of the obstacle line [mm]
-      real(wp) :: obstacle_normal(2) = [0.0_wp, 1.0_wp]  !< unit normal nu, obstacle -> body
+      !> a point P of the obstacle line [mm]; plane only (not given: default_obstacle_point)
+      real(wp) :: obstacle_point(2) = [unset, unset]
+      !> unit normal nu, obstacle -> body; plane only (not given: default_obstacle_normal)
+      real(wp) :: obstacle_normal(2) = [unset, unset]
       real(wp) :: origin(2) = [unset, unset]       !< point O of the abscissa; default: first node
       character(len=4) :: direction = 'ccw'        !< abscissa runs 'ccw' or 'cw' along the boundary
       character(len=4) :: multiplier = 'P1'        !< 'P1' | 'P0'
@@ -722,7 +757,92 @@ contains
       end if
    end function assignment_problem
 
-   !> Read every group (defaults first, then the deck block, then the overrides).
+   !> The first value in some namelist text (the lines of one group, or one --set assignment)
+   !> that the namelist read must not take, as 'label:variable = value ...', or '' if none; at:
+   !> the index of its line. A real literal beyond the double range (1e999: the conversion
+   !> overflows, which traps in the Debug build) or equal to +-huge, the deck's 'not given'
+   !> marker, is refused as out of range (|value| <= max_magnitude), so that a marker the user
+   !> types cannot pass for a value never given; a logical variable takes only .true./.false.
+   !> (T, F, .t., true, ...). NaN and Infinity typed as such are left to check_finite, which
+   !> names the array entry. Runs with floating-point halting off (read_groups' note).
+   function value_problem(lines, group, label, at) result(problem)
+      character(len=*), intent(in) :: lines(:)
+      character(len=*), intent(in) :: group, label
+      integer, intent(out) :: at
+      character(len=:), allocatable :: problem
+      character(len=*), parameter :: separators = blanks//',=/&()'
+      character(len=:), allocatable :: code, token, name, word
+      real(wp) :: v
+      integer :: l, p, e, k, ios
+      problem = ''
+      name = ''
+      do l = 1, size(lines)
+         at = l
+         code = syntax_only(lines(l))
+         p = 1
+         do while (p <= len(code))
+            if (scan(code(p:p), separators) > 0) then
+               p = p + 1
+               cycle
+            end if
+            e = scan(code(p:), separators)
+            if (e == 0) then
+               e = len(code) + 1
+            else
+               e = p + e - 1
+            end if
+            token = code(p:e - 1)
+            ! a name is followed by '=', after an optional subscript
+            k = e
+            do while (k <= len(code))
+               if (scan(code(k:k), blanks) == 0) exit
+               k = k + 1
+            end do
+            if (k <= len(code)) then
+               if (code(k:k) == '(') then
+                  k = k + index(code(k:), ')')
+                  do while (k <= len(code))
+                     if (scan(code(k:k), blanks) == 0) exit
+                     k = k + 1
+                  end do
+               end if
+            end if
+            if (k <= len(code)) then
+               if (code(k:k) == '=') then
+                  name = lower(token)
+                  p = k + 1
+                  cycle
+               end if
+            end if
+            p = e
+            if (len(name) == 0 .or. scan(token, '"'//"'") > 0) cycle   ! a group name, a quoted string
+            ! r*c: c repeated r times
+            word = token(index(token, '*') + 1:)
+            if (len(word) == 0) cycle
+            if (any(logical_vars == group//':'//name)) then
+               if (.not. any(logical_words == lower(word))) then
+                  problem = label//':'//name//' = '//word//' is not a logical value; give .true. or .false.'
+                  return
+               end if
+               cycle
+            end if
+            read (word, *, iostat=ios) v
+            if (ios /= 0) cycle   ! not a number: the namelist read says what is wrong
+            if (index(lower(word), 'nan') > 0 .or. index(lower(word), 'inf') > 0) cycle
+            if (.not. ieee_is_finite(v) .or. abs(v) >= huge(v)) then
+               problem = label//':'//name//' = '//word//' is out of range (|value| <= '//str(max_magnitude)//')'
+               return
+            end if
+         end do
+      end do
+      at = 0
+   end function value_problem
+
+   !> Read every group (defaults first, then the deck block, then the overrides). The reads run
+   !> with floating-point halting off and the caller's floating-point status restored after: a
+   !> literal such as 1e999 overflows inside the runtime's conversion, which would trap in the
+   !> Debug build (-ffpe-trap) before any check could name it; value_problem and check_finite
+   !> refuse such values afterwards with the same message in both builds.
    subroutine read_groups(path, lines, blocks, ovr, deck, stat, errmsg)
       character(len=*), intent(in) :: path
       character(len=line_len), intent(in) :: lines(:)
@@ -731,12 +851,56 @@ contains
       type(deck_t), intent(inout) :: deck
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
+      type(ieee_status_type) :: saved
+      call ieee_get_status(saved)
+      call ieee_set_halting_mode(ieee_usual, .false.)
+      call read_groups_unmasked(path, lines, blocks, ovr, deck, stat, errmsg)
+      call ieee_set_status(saved)
+   end subroutine read_groups
+
+   subroutine read_groups_unmasked(path, lines, blocks, ovr, deck, stat, errmsg)
+      character(len=*), intent(in) :: path
+      character(len=line_len), intent(in) :: lines(:)
+      type(block_t), intent(in) :: blocks(:)
+      type(override_t), intent(in) :: ovr(:)
+      type(deck_t), intent(inout) :: deck
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
       character(len=line_len) :: none(0)
-      integer :: b, nd, nt, k
-      character(len=:), allocatable :: where
+      integer :: b, nd, nt, k, at
+      character(len=:), allocatable :: where, label
 
       stat = 0
       errmsg = ''
+      ! every value as text first (value_problem), the deck's groups, then the --set ones
+      nd = 0
+      nt = 0
+      do b = 1, size(blocks)
+         label = trim(blocks(b)%name)
+         if (label == 'dirichlet') then
+            nd = nd + 1
+            label = label//'#'//str(nd)
+         else if (label == 'traction') then
+            nt = nt + 1
+            label = label//'#'//str(nt)
+         end if
+         errmsg = value_problem(lines(blocks(b)%first:blocks(b)%last), trim(blocks(b)%name), label, at)
+         if (len(errmsg) > 0) then
+            stat = 1
+            errmsg = path//':'//str(blocks(b)%first + at - 1)//': '//errmsg
+            return
+         end if
+      end do
+      do k = 1, size(ovr)
+         label = trim(ovr(k)%group)
+         if (label == 'dirichlet' .or. label == 'traction') label = label//'#'//str(max(ovr(k)%index, 1))
+         errmsg = value_problem([ovr(k)%assignment], trim(ovr(k)%group), label, at)
+         if (len(errmsg) > 0) then
+            stat = 1
+            errmsg = "--set '"//ovr(k)%spec//"': "//errmsg
+            return
+         end if
+      end do
       allocate (deck%dirichlet(count(blocks%name == 'dirichlet')))
       allocate (deck%traction(count(blocks%name == 'traction')))
       nd = 0
@@ -781,7 +945,7 @@ contains
             return
          end if
       end do
-   end subroutine read_groups
+   end subroutine read_groups_unmasked
 
    !> A runtime message 'Cannot match namelist object name X' points at the group's first line;
    !> point it at the line holding X instead and quote that line.
@@ -838,10 +1002,68 @@ contains
       end if
    end function too_long
 
+   !> "; did you mean 'young'?" for an unknown variable name of a group: the group's variables
+   !> nearest to it in optimal-string-alignment distance (insertions, deletions, substitutions
+   !> and swaps of two neighbours, each 1), when that distance is at most 1 for names of up
+   !> to 4 letters and at most 2 beyond; '' when none is that near.
+   function nearest_names(name, group) result(hint)
+      character(len=*), intent(in) :: name, group
+      character(len=:), allocatable :: hint, list, word, best
+      integer :: g, p, e, d, dmin, nbest
+      hint = ''
+      g = findloc(group_names, group, 1)
+      if (g == 0) return
+      list = trim(group_variables(g))//' '
+      dmin = merge(1, 2, len(name) <= 4)
+      best = ''
+      nbest = 0
+      p = 1
+      do while (p < len(list))
+         e = p - 1 + index(list(p:), ' ')
+         word = list(p:e - 1)
+         p = e + 1
+         d = osa_distance(name, word)
+         if (d > dmin) cycle
+         if (d < dmin) then
+            dmin = d
+            best = ''
+            nbest = 0
+         end if
+         if (nbest > 0) best = best//' or '
+         best = best//"'"//word//"'"
+         nbest = nbest + 1
+      end do
+      if (nbest > 0) hint = "; did you mean "//best//'?'
+   end function nearest_names
+
+   !> Optimal string alignment distance between a and b (Damerau-Levenshtein without
+   !> repeated edits of a substring): the fewest insertions, deletions, substitutions and
+   !> transpositions of adjacent characters turning a into b.
+   pure integer function osa_distance(a, b) result(dist)
+      character(len=*), intent(in) :: a, b
+      integer :: d(0:len(a), 0:len(b)), i, j, cost
+      do i = 0, len(a)
+         d(i, 0) = i
+      end do
+      do j = 0, len(b)
+         d(0, j) = j
+      end do
+      do j = 1, len(b)
+         do i = 1, len(a)
+            cost = merge(0, 1, a(i:i) == b(j:j))
+            d(i, j) = min(d(i - 1, j) + 1, d(i, j - 1) + 1, d(i - 1, j - 1) + cost)
+            if (i > 1 .and. j > 1) then
+               if (a(i:i) == b(j - 1:j - 1) .and. a(i - 1:i - 1) == b(j:j)) d(i, j) = min(d(i, j), d(i - 2, j - 2) + 1)
+            end if
+         end do
+      end do
+      dist = d(len(a), len(b))
+   end function osa_distance
+
    !> Turn a failed namelist read into a message; true if it failed.
-   logical function read_failed(ios, msg, where, stat, errmsg)
+   logical function read_failed(ios, msg, group, where, stat, errmsg)
       integer, intent(in) :: ios
-      character(len=*), intent(in) :: msg, where
+      character(len=*), intent(in) :: msg, group, where
       integer, intent(inout) :: stat
       character(len=:), allocatable, intent(inout) :: errmsg
       character(len=:), allocatable :: name
@@ -854,12 +1076,18 @@ contains
          if (k == 0) return
          name = lower(trim(msg(k + 34:)))
          if (len(name) == 0) return
-         if (.not. is_letter(name(1:1))) then
-            ! no name but a number: a value beyond the variable's size, often a decimal comma
+         if (verify(name(1:1), '0123456789') == 0) then
+            ! no name but a number after a separator: a value beyond the variable's size, often
+            ! a decimal comma (0,3 reads as 0 and a second value 3). Not for '.5' (nx = 2.5: an
+            ! integer read stops at the point) nor for a quoted text ('abc' for a number)
             errmsg = errmsg//'; more values than the variable holds (a decimal takes a point: 0.3, not 0,3)'
-         else if (index(where, '--set') == 1 .and. index(lower(where(index(where, '=') + 1:)), name) > 0) then
+         else if (is_letter(name(1:1)) .and. index(where, '--set') == 1 .and. &
+                  index(lower(where(index(where, '=') + 1:)), name) > 0) then
             ! an unquoted text value (--set contact:friction=coulomb) reads as a variable name
             errmsg = errmsg//'; a text value needs quotes, e.g. --set "contact:friction='//"'coulomb'"//'"'
+         else if (is_letter(name(1:1))) then
+            ! a misspelled name: the nearest names of the group, when near enough
+            errmsg = errmsg//nearest_names(name, group)
          end if
       end if
    end function read_failed
@@ -879,11 +1107,11 @@ contains
       lx = cfg%lx; ly = cfg%ly; nx = cfg%nx; ny = cfg%ny; level = cfg%level; file = cfg%file
       if (size(blk) > 0) then
          read (blk, nml=mesh, iostat=ios, iomsg=msg)
-         if (read_failed(ios, msg, where, stat, errmsg)) return
+         if (read_failed(ios, msg, 'mesh', where, stat, errmsg)) return
       end if
       do i = 1, size(ovr)
          read (ovr(i)%assignment, nml=mesh, iostat=ios, iomsg=msg)
-         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+         if (read_failed(ios, msg, 'mesh', "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
       if (too_long(where, 'file', file, len(cfg%file), stat, errmsg)) return
       cfg%lx = lx; cfg%ly = ly; cfg%nx = nx; cfg%ny = ny; cfg%level = level; cfg%file = file
@@ -903,11 +1131,11 @@ contains
       young = cfg%young; poisson = cfg%poisson; density = cfg%density
       if (size(blk) > 0) then
          read (blk, nml=material, iostat=ios, iomsg=msg)
-         if (read_failed(ios, msg, where, stat, errmsg)) return
+         if (read_failed(ios, msg, 'material', where, stat, errmsg)) return
       end if
       do i = 1, size(ovr)
          read (ovr(i)%assignment, nml=material, iostat=ios, iomsg=msg)
-         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+         if (read_failed(ios, msg, 'material', "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
       cfg%young = young; cfg%poisson = poisson; cfg%density = density
    end subroutine read_material
@@ -934,14 +1162,14 @@ contains
       else
          read (blk, nml=traction, iostat=ios, iomsg=msg)
       end if
-      if (read_failed(ios, msg, where, stat, errmsg)) return
+      if (read_failed(ios, msg, group, where, stat, errmsg)) return
       do i = 1, size(ovr)
          if (group == 'dirichlet') then
             read (ovr(i)%assignment, nml=dirichlet, iostat=ios, iomsg=msg)
          else
             read (ovr(i)%assignment, nml=traction, iostat=ios, iomsg=msg)
          end if
-         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+         if (read_failed(ios, msg, group, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
       if (too_long(where, 'edge', edge, len(cfg%edge), stat, errmsg)) return
       if (too_long(where, 'boundary', boundary, len(cfg%boundary), stat, errmsg)) return
@@ -981,10 +1209,10 @@ contains
       penalty_stiffness = cfg%penalty_stiffness
       friction_coefficient = cfg%friction_coefficient
       read (blk, nml=contact, iostat=ios, iomsg=msg)
-      if (read_failed(ios, msg, where, stat, errmsg)) return
+      if (read_failed(ios, msg, 'contact', where, stat, errmsg)) return
       do i = 1, size(ovr)
          read (ovr(i)%assignment, nml=contact, iostat=ios, iomsg=msg)
-         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+         if (read_failed(ios, msg, 'contact', "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
       if (too_long(where, 'edge', edge, len(cfg%edge), stat, errmsg)) return
       if (too_long(where, 'friction', friction, len(cfg%friction), stat, errmsg)) return
@@ -1036,11 +1264,11 @@ contains
       static_iterations = cfg%static_iterations; static_splits = cfg%static_splits
       if (size(blk) > 0) then
          read (blk, nml=solver, iostat=ios, iomsg=msg)
-         if (read_failed(ios, msg, where, stat, errmsg)) return
+         if (read_failed(ios, msg, 'solver', where, stat, errmsg)) return
       end if
       do i = 1, size(ovr)
          read (ovr(i)%assignment, nml=solver, iostat=ios, iomsg=msg)
-         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+         if (read_failed(ios, msg, 'solver', "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
       if (too_long(where, 'damping', damping, len(cfg%damping), stat, errmsg)) return
       if (too_long(where, 'method', method, len(cfg%method), stat, errmsg)) return
@@ -1072,11 +1300,11 @@ contains
       velocity = cfg%velocity
       if (size(blk) > 0) then
          read (blk, nml=initial, iostat=ios, iomsg=msg)
-         if (read_failed(ios, msg, where, stat, errmsg)) return
+         if (read_failed(ios, msg, 'initial', where, stat, errmsg)) return
       end if
       do i = 1, size(ovr)
          read (ovr(i)%assignment, nml=initial, iostat=ios, iomsg=msg)
-         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+         if (read_failed(ios, msg, 'initial', "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
       cfg%velocity = velocity
    end subroutine read_initial
@@ -1097,11 +1325,11 @@ contains
       snapshot_times = cfg%snapshot_times
       if (size(blk) > 0) then
          read (blk, nml=output, iostat=ios, iomsg=msg)
-         if (read_failed(ios, msg, where, stat, errmsg)) return
+         if (read_failed(ios, msg, 'output', where, stat, errmsg)) return
       end if
       do i = 1, size(ovr)
          read (ovr(i)%assignment, nml=output, iostat=ios, iomsg=msg)
-         if (read_failed(ios, msg, "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
+         if (read_failed(ios, msg, 'output', "--set '"//ovr(i)%spec//"': ", stat, errmsg)) return
       end do
       cfg%history_interval = history_interval; cfg%xdmf = xdmf; cfg%progress = progress
       cfg%snapshot_times = snapshot_times
@@ -1175,6 +1403,12 @@ contains
          if (.not. s%dt_factor > 0) then
             errmsg = 'solver:dt_factor = '//str(s%dt_factor)//' must be > 0'
             return
+         end if
+         ! a step below 1e-30 (s) is no physical input; a subnormal one overflows the step count
+         ! t_end/dt (Debug: a trap)
+         if (check_range('solver:dt_factor', s%dt_factor, 1.0e-30_wp, max_magnitude, errmsg)) return
+         if (s%dt /= 0) then
+            if (check_range('solver:dt', s%dt, 1.0e-30_wp, max_magnitude, errmsg)) return
          end if
          if (s%t_ramp /= unset .and. .not. s%t_ramp > 0) then
             errmsg = 'solver:t_ramp = '//str(s%t_ramp)//' must be > 0'
@@ -1252,6 +1486,12 @@ contains
          end if
          if (s%static_splits < 0 .or. s%static_splits > 20) then
             errmsg = 'solver:static_splits = '//str(s%static_splits)//' must be between 0 and 20'
+            return
+         end if
+         ! the static engine solves K u = f: a fictitious mass would not be applied (docs/static.md)
+         if (s%method == 'static' .and. s%mass_scaling > 0) then
+            errmsg = 'solver:mass_scaling = '//str(s%mass_scaling)//" has no meaning with method = 'static' "// &
+                     '(the static engine has no mass and no time step); set mass_scaling = 0'
             return
          end if
          if (s%method == 'static' .and. s%compare_static) then
@@ -1403,11 +1643,22 @@ contains
                   errmsg = 'contact:obstacle_radius = '//str(c%obstacle_radius)//' must be > 0 (mm)'
                   return
                end if
+               if (any(c%obstacle_point /= unset) .or. any(c%obstacle_normal /= unset)) then
+                  errmsg = "contact: obstacle_point and obstacle_normal are set but obstacle = 'circle' ignores "// &
+                           'them (the circle is obstacle_center and obstacle_radius)'
+                  return
+               end if
             else if (any(c%obstacle_center /= unset) .or. c%obstacle_radius /= unset) then
                errmsg = "contact:obstacle_center/obstacle_radius are set but obstacle = 'plane' ignores them; "// &
                         "use obstacle = 'circle'"
                return
             end if
+            if (count(c%obstacle_point == unset) == 1 .or. count(c%obstacle_normal == unset) == 1) then
+               errmsg = 'contact:obstacle_point and obstacle_normal take two components each (x, y)'
+               return
+            end if
+            if (all(c%obstacle_point == unset)) c%obstacle_point = default_obstacle_point
+            if (all(c%obstacle_normal == unset)) c%obstacle_normal = default_obstacle_normal
             if (.not. (c%xmin <= c%xmax .and. c%ymin <= c%ymax)) then
                errmsg = 'contact: the range needs xmin <= xmax and ymin <= ymax'
                return
@@ -1433,33 +1684,40 @@ contains
                errmsg = "contact:friction = '"//trim(c%friction)//"' is not one of 'frictionless', 'tresca', 'coulomb'"
                return
             end if
-            ! Coulomb (docs/friction.md): a finite mu >= 0, and no Tresca settings with it
-            if (.not. (c%friction_coefficient >= 0 .and. c%friction_coefficient <= huge(1.0_wp))) then
-               errmsg = 'contact:friction_coefficient = '//str(c%friction_coefficient)//' must be finite and >= 0'
+            c%npoints = count(c%threshold_abscissa /= unset)
+            if (count(c%threshold_values /= unset) /= c%npoints) then
+               errmsg = 'contact: threshold_abscissa and threshold_values need the same number of entries'
                return
             end if
+            ! Coulomb (docs/friction.md): a finite mu >= 0, and no Tresca settings with it. A zero
+            ! mu or threshold is no friction law of its own, so it goes with any law: a --set
+            ! cannot remove a variable, and `--set contact:friction='coulomb' --set
+            ! contact:threshold=0` is how a Tresca deck is switched to Coulomb
             if (c%friction /= 'coulomb' .and. c%friction_coefficient /= 0) then
                errmsg = "contact:friction_coefficient is set but friction = '"//trim(c%friction)// &
                         "'; use friction = 'coulomb'"
+               return
+            end if
+            if (c%friction /= 'tresca' .and. (c%threshold /= 0 .or. c%npoints > 0)) then
+               errmsg = "contact: a threshold is given but friction = '"//trim(c%friction)//"'; use friction = 'tresca'"
+               return
+            end if
+            if (c%npoints > 0 .and. c%threshold /= 0) then
+               errmsg = 'contact: give either threshold or threshold_abscissa/threshold_values, not both'
+               return
+            end if
+            if (.not. (c%friction_coefficient >= 0 .and. c%friction_coefficient <= huge(1.0_wp))) then
+               errmsg = 'contact:friction_coefficient = '//str(c%friction_coefficient)//' must be finite and >= 0'
                return
             end if
             if (.not. c%threshold >= 0) then
                errmsg = 'contact:threshold = '//str(c%threshold)//' must be >= 0 (MPa)'
                return
             end if
-            c%npoints = count(c%threshold_abscissa /= unset)
-            if (count(c%threshold_values /= unset) /= c%npoints) then
-               errmsg = 'contact: threshold_abscissa and threshold_values need the same number of entries'
-               return
-            end if
             if (c%npoints > 0) then
                if (any(c%threshold_abscissa(c%npoints + 1:) /= unset) .or. &
                    any(c%threshold_values(c%npoints + 1:) /= unset)) then
                   errmsg = 'contact: threshold_abscissa/threshold_values must be given from the first entry on'
-                  return
-               end if
-               if (c%threshold /= 0) then
-                  errmsg = 'contact: give either threshold or threshold_abscissa/threshold_values, not both'
                   return
                end if
                if (any(c%threshold_values(1:c%npoints) < 0)) then
@@ -1472,10 +1730,6 @@ contains
                      return
                   end if
                end do
-            end if
-            if (c%friction /= 'tresca' .and. (c%threshold /= 0 .or. c%npoints > 0)) then
-               errmsg = "contact: a threshold is given but friction = '"//trim(c%friction)//"'; use friction = 'tresca'"
-               return
             end if
             c%tresca_scope = lower(c%tresca_scope)
             if (.not. any(c%tresca_scope == [character(len=8) :: 'all', 'contact'])) then
@@ -1732,6 +1986,8 @@ contains
                    kv('friction', q(c%friction))
             if (c%friction == 'coulomb') then
                text = text//kv('friction_coefficient', str(c%friction_coefficient))
+            else if (c%friction /= 'tresca') then
+               continue   ! threshold is refused with the other laws
             else if (c%npoints > 0) then
                text = text//kv('threshold_abscissa', reals(c%threshold_abscissa(1:c%npoints)))// &
                       kv('threshold_values', reals(c%threshold_values(1:c%npoints)))
@@ -1770,10 +2026,11 @@ contains
          character(len=:), allocatable :: line
          line = '   '//key//' = '//value//nl
       end function kv
+      !> a quoted text; control characters escaped (printable), so that the echo is plain text
       function q(s) result(t)
          character(len=*), intent(in) :: s
          character(len=:), allocatable :: t
-         t = "'"//trim(s)//"'"
+         t = "'"//printable(trim(s))//"'"
       end function q
       function reals(a) result(t)
          real(wp), intent(in) :: a(:)

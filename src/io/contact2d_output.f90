@@ -28,8 +28,9 @@ module contact2d_output
       'damping_dissipation', 'energy_balance_error', 'residual', 'normal_force_total', &
       'tangential_force_total', 'normal_contact_work', 'step', 'damping_alpha', 'stick_increment_max', &
       'status_changes', 'penetration_max', 'kinetic_energy_physical', 'strain_energy_physical']
+   !> (plane strain: forces are per unit thickness, N/mm)
    character(len=8), parameter :: history_units(18) = [character(len=8) :: &
-      's', 'mJ', 'mJ', 'mJ', 'mJ', 'mJ', '1', '1', 'N', 'N', 'mJ', '1', '1/s', 'mm', '1', 'mm', 'mJ', 'mJ']
+      's', 'mJ', 'mJ', 'mJ', 'mJ', 'mJ', '1', '1', 'N/mm', 'N/mm', 'mJ', '1', '1/s', 'mm', '1', 'mm', 'mJ', 'mJ']
    integer, parameter :: nseries = size(history_names)
    integer, parameter :: flush_samples = 256
    real(wp), parameter :: flush_seconds = 2.0_wp
@@ -92,7 +93,8 @@ contains
       call this%file%attr(root, 'deck', deck%text)
       call this%file%attr(root, 'deck_path', deck%path)
       call this%file%attr(root, 'effective_deck', deck%effective)
-      call this%file%attr(root, 'units', 'length mm, force N, stress MPa, mass t, time s, energy mJ')
+      call this%file%attr(root, 'units', 'length mm, force N (nodal forces per unit thickness, N/mm), '// &
+                          'stress MPa, mass t, time s, energy mJ')
       if (model%contact%active) then
          call this%file%attr(root, 'multiplier', model%contact%multiplier_name())
       else
@@ -188,8 +190,8 @@ contains
       call this%file%attr(g, 'step', int(solver%step))
       call this%file%dataset(g, 'displacement', model%mesh%file_order(solver%u), 'mm')
       if (model%contact%active) then
-         call this%file%dataset(g, 'contact_normal_force', model%contact%fn, 'N')
-         call this%file%dataset(g, 'contact_tangential_force', model%contact%ft, 'N')
+         call this%file%dataset(g, 'contact_normal_force', model%contact%fn, 'N/mm')
+         call this%file%dataset(g, 'contact_tangential_force', model%contact%ft, 'N/mm')
          ! the multiplier fields and statuses as /final/contact has them (SPEC section 3)
          call model%contact%fields(pressure, shear, info)
          call model%contact%status(status)
@@ -260,7 +262,7 @@ contains
       call this%file%dataset(g, 'displacement', model%mesh%file_order(solver%u), 'mm')
       call this%file%dataset(g, 'velocity', model%mesh%file_order(solver%v), 'mm/s')
       call this%file%dataset(g, 'stress', stress, 'MPa')
-      call this%file%dataset(g, 'reaction', model%mesh%file_order(reaction), 'N')
+      call this%file%dataset(g, 'reaction', model%mesh%file_order(reaction), 'N/mm')
       if (model%contact%active) call write_final_contact(this, g, model)
       call this%file%close_group(g)
       ! the status last: a file whose /final failed to be written still says 'running'
@@ -289,8 +291,8 @@ contains
          call c%fields(pressure, shear, info)
          call c%status(status)
          g = this%file%group(final, 'contact')
-         call this%file%dataset(g, 'normal_force', c%fn, 'N')
-         call this%file%dataset(g, 'tangential_force', c%ft, 'N')
+         call this%file%dataset(g, 'normal_force', c%fn, 'N/mm')
+         call this%file%dataset(g, 'tangential_force', c%ft, 'N/mm')
          call this%file%dataset(g, 'pressure', pressure, 'MPa')
          call this%file%dataset(g, 'shear', shear, 'MPa')
          call this%file%dataset(g, 'status', status, '0 separated, 1 stick, 2 slip')

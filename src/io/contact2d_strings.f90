@@ -2,9 +2,11 @@
 module contact2d_strings
    use contact2d_kinds, only: wp, i8
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
+   use, intrinsic :: ieee_exceptions, only: ieee_status_type, ieee_get_status, ieee_set_status, &
+                                            ieee_set_halting_mode, ieee_usual
    implicit none
    private
-   public :: str, lower, join, fixed, sci
+   public :: str, lower, join, fixed, sci, printable
 
    !> Shortest text that reads back to the same value (reals), or the plain integer.
    interface str
@@ -21,6 +23,7 @@ contains
       character(len=:), allocatable :: digits, sign
       real(wp) :: back
       integer :: d, ios, e, epos, point
+      type(ieee_status_type) :: saved
       if (x == 0) then
          s = '0'
          return
@@ -30,13 +33,17 @@ contains
          s = trim(adjustl(buf))
          return
       end if
-      ! fewest significant digits that read back to x
+      ! fewest significant digits that read back to x; near huge(x) a short text rounds up past
+      ! it, and the read overflows: halting off, so that the Debug build does not trap
+      call ieee_get_status(saved)
+      call ieee_set_halting_mode(ieee_usual, .false.)
       do d = 1, 17
          write (fmt, '(a,i0,a,i0,a)') '(es', d + 10, '.', d - 1, 'e3)'
          write (buf, fmt) x
          read (buf, *, iostat=ios) back
          if (ios == 0 .and. back == x) exit
       end do
+      call ieee_set_status(saved)
       buf = adjustl(buf)
       sign = ''
       if (buf(1:1) == '-') then
@@ -139,13 +146,39 @@ contains
       if (s(1:1) == '.') s = '0'//s
    end function fixed
 
-   !> A real in short scientific notation.
+   !> A real in short scientific notation, 4 significant digits: 1.500E+05, 4.457E-122. The
+   !> exponent field has room for three digits (an Ew.d edit descriptor without Ee drops the
+   !> letter E for |exponent| > 99: 4.457-122, F2018 13.7.2.3.3); a leading 0 of it is dropped.
    function sci(x) result(s)
       real(wp), intent(in) :: x
       character(len=:), allocatable :: s
       character(len=32) :: buf
-      write (buf, '(es10.3)') x
+      integer :: k
+      write (buf, '(es12.3e3)') x
       s = trim(adjustl(buf))
+      k = index(s, 'E')
+      if (k > 0 .and. len(s) == k + 4) then
+         if (s(k + 2:k + 2) == '0') s = s(:k + 1)//s(k + 3:)
+      end if
    end function sci
+
+   !> s with every control character (codes 0-31 and 127: newline, carriage return, escape,
+   !> ...) written as \xNN in hexadecimal, so that a message or echo is one line of plain text
+   !> on a terminal whatever the input held. Other bytes (UTF-8 text included) are kept.
+   pure function printable(s) result(t)
+      character(len=*), intent(in) :: s
+      character(len=:), allocatable :: t
+      character(len=*), parameter :: hex = '0123456789abcdef'
+      integer :: i, c
+      t = ''
+      do i = 1, len(s)
+         c = iachar(s(i:i))
+         if (c < 32 .or. c == 127) then
+            t = t//'\x'//hex(c/16 + 1:c/16 + 1)//hex(mod(c, 16) + 1:mod(c, 16) + 1)
+         else
+            t = t//s(i:i)
+         end if
+      end do
+   end function printable
 
 end module contact2d_strings

@@ -1,6 +1,7 @@
 !> Isotropic Hooke law in plane strain (SPEC section 2; the paper's constitutive law).
 module contact2d_material
    use contact2d_kinds, only: wp
+   use contact2d_strings, only: str
    implicit none
    private
    public :: material_t, material_init
@@ -26,22 +27,20 @@ contains
       real(wp), intent(in) :: young, poisson, density
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      character(len=32) :: buf
 
       stat = 1
+      ! the values as the deck gives them (str: shortest text that reads back; es12.5 printed
+      ! -1.00000-200 for -1e-200, the exponent letter lost)
       if (.not. (young > 0)) then
-         write (buf, '(es12.5)') young
-         errmsg = 'material:young = '//trim(adjustl(buf))//' must be > 0'
+         errmsg = 'material:young = '//str(young)//' must be > 0'
          return
       end if
       if (.not. (poisson > -1 .and. poisson < 0.5_wp)) then
-         write (buf, '(es12.5)') poisson
-         errmsg = 'material:poisson = '//trim(adjustl(buf))//' must satisfy -1 < poisson < 0.5'
+         errmsg = 'material:poisson = '//str(poisson)//' must satisfy -1 < poisson < 0.5'
          return
       end if
       if (.not. (density > 0)) then
-         write (buf, '(es12.5)') density
-         errmsg = 'material:density = '//trim(adjustl(buf))//' must be > 0'
+         errmsg = 'material:density = '//str(density)//' must be > 0'
          return
       end if
       stat = 0

@@ -13,6 +13,7 @@ module contact2d_gmsh
    use, intrinsic :: ieee_exceptions, only: ieee_get_halting_mode, ieee_set_halting_mode, ieee_set_flag, &
                                             ieee_all, ieee_usual
    use omp_lib, only: omp_get_max_threads, omp_set_num_threads
+   use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use contact2d_gmsh_config, only: gmsh_library_path
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str
@@ -393,7 +394,7 @@ contains
       real(wp), allocatable :: x(:, :)
       character(len=64), allocatable :: names(:)
       integer(c_size_t) :: maxtag
-      integer :: i, g, ngroup, nseg, j, nel, nnode
+      integer :: i, g, ngroup, nseg, j, nel, nnode, bad
       character(len=:), allocatable :: name
 
       stat = 1
@@ -469,6 +470,25 @@ contains
             local(j) = nnode
          end if
       end do
+      ! coordinates are finite: a NaN or Infinity (a .msh file is text anyone can edit) would
+      ! otherwise surface as a non-positive Jacobian, or trap in the Debug build's area test
+      bad = 0
+      do i = 1, int(n_tags)
+         j = int(tags(i))
+         if (j > size(local)) cycle
+         if (local(j) == 0) cycle
+         if (.not. (ieee_is_finite(coord(3*i - 2)) .and. ieee_is_finite(coord(3*i - 1)))) then
+            bad = j
+            exit
+         end if
+      end do
+      if (bad > 0) then
+         call gmshFree(p_tags)
+         call gmshFree(p_coord)
+         if (c_associated(p_pc)) call gmshFree(p_pc)
+         errmsg = "mesh:file = '"//path//"': node "//str(bad)//' has a coordinate that is not finite (NaN or Infinity)'
+         return
+      end if
       allocate (x(2, nnode))
       x = 0
       used = 0

@@ -4,7 +4,8 @@ Cases on the small deck tests/regression/geometry/base.nml (a 3 x 3 quad square 
 triangles (a .geo without recombination), a boundary name the mesh lacks (the message lists the
 names it has), a Gamma_c group that is not one chain (bottom and top), an inverted (self-
 intersecting) element in a .msh file (element 12 of geometry/inverted.msh, named by that id, not its index 2), a
-quadrilateral with a node twice (geometry/degenerate.msh), a circle obstacle without its
+quadrilateral with a node twice (geometry/degenerate.msh), a node with a NaN coordinate
+(geometry/nan_coordinate.msh), a circle obstacle without its
 centre, a mesh file that does not exist, a .geo with Mesh.Algorithm = 8 (crashes Gmsh 4.8). Each runs in an empty directory with -o out.h5: exit 1,
 exactly one stderr line 'contact2d: error: ...' matching the case's pattern, no out.h5, no out.xmf.
 """
@@ -30,6 +31,10 @@ CASES = [
     ("degenerate_element", ["--set", "mesh:file='degenerate.msh'", "--set", "dirichlet#1:boundary='bottom'",
                             "--set", "dirichlet#2:boundary='bottom'"],
      r"element 12 has node 6 twice \(a degenerate quadrilateral\)"),
+    # a NaN coordinate in a .msh file is named as such (it was a non-positive Jacobian, and trapped in Debug)
+    ("nan_coordinate", ["--set", "mesh:file='nan_coordinate.msh'", "--set", "dirichlet#1:boundary='bottom'",
+                        "--set", "dirichlet#2:boundary='bottom'"],
+     r"nan_coordinate\.msh': node 5 has a coordinate that is not finite"),
     ("circle_without_centre", ["--set", "contact:obstacle='circle'"],
      r"obstacle = 'circle' needs obstacle_center"),
     ("missing_mesh_file", ["--set", "mesh:file='no_such_mesh.msh'"],

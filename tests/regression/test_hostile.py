@@ -111,6 +111,26 @@ def nan_cases():
         ("threshold_values_inf", "c", "contact:threshold_values=inf", r"contact:threshold_values\(1\) = \+Inf"),
         ("penalty_stiffness_nan", "c", "contact:penalty_stiffness=nan", r"contact:penalty_stiffness = NaN"),
         ("contact_xmax_nan", "c", "contact:xmax=nan", r"contact:xmax = NaN"),
+        # beyond the double range (the conversion overflows: trapped in Debug) and the 'not given'
+        # marker +-huge(1.0) typed by the user: both out of range, in every group
+        ("lx_1e999", "u", "mesh:lx=1e999", r"mesh:lx = 1e999 is out of range"),
+        ("young_minus_1e400", "u", "material:young=-1e400", r"material:young = -1e400 is out of range"),
+        ("t_end_1d999", "u", "solver:t_end=1d999", r"solver:t_end = 1d999 is out of range"),
+        ("snapshot_2x1e999", "u", "output:snapshot_times=1e-6, 2*1e999", r"output:snapshot_times = 1e999 is out of range"),
+        ("values_marker", "u", "dirichlet#3:values=-1.7976931348623157e308",
+         r"dirichlet#3:values = -1\.7976931348623157e308 is out of range"),
+        ("xmax_marker", "u", "dirichlet#1:xmax=1.7976931348623157e308",
+         r"dirichlet#1:xmax = 1\.7976931348623157e308 is out of range"),
+        ("velocity_marker", "u", "initial:velocity=1.7976931348623157e308,0",
+         r"initial:velocity = 1\.7976931348623157e308 is out of range"),
+        ("dt_marker", "u", "solver:dt=1.7976931348623157e308", r"solver:dt = 1\.7976931348623157e308 is out of range"),
+        ("obstacle_point_marker", "c", "contact:obstacle_point=-1.7976931348623157e308,0",
+         r"contact:obstacle_point = -1\.7976931348623157e308 is out of range"),
+        ("origin_marker", "c", "contact:origin=1.7976931348623157e308,1.7976931348623157e308",
+         r"contact:origin = 1\.7976931348623157e308 is out of range"),
+        ("threshold_minus_1e999", "c", "contact:threshold=-1e999", r"contact:threshold = -1e999 is out of range"),
+        # a tiny bad value keeps its exponent letter in the message (es12.5 printed -1.00000-200)
+        ("young_minus_1e-200", "u", "material:young=-1e-200", r"material:young = -1e-200 must be > 0"),
     ]
     return [(name, base, ["--set", s], None, pat, {}) for name, base, s, pat in rows]
 
@@ -174,6 +194,9 @@ def cases():
         ("damping_too_long", "u", ["--set", "solver:damping='automatic'"], None, r"damping = 'automatic' is longer than 8", {}),
         ("component_too_long", "u", ["--set", "dirichlet#1:component='tangential_component'"], None,
          r"component = 'tangential_component' is longer than 16", {}),
+        # a real beyond the double range inside the deck (overflowed in the namelist read, Debug trapped)
+        ("lx_1e999_in_deck", edit("u", "lx = 1.0, ly = 0.5", "lx = 1e999, ly = 0.5"), [], None,
+         r"deck\.nml:9: mesh:lx = 1e999 is out of range", {}),
         ("amp_end", edit("u", "   lx = 1.0, ly = 0.5, nx = 8, ny = 4\n/", "   lx = 1.0, ly = 0.5, nx = 8, ny = 4\n&end"),
          [], None, r"deck\.nml:10: '&end' does not close a group", {}),
         ("group_inside_group", edit("u", "   lx = 1.0, ly = 0.5, nx = 8, ny = 4\n/", "   lx = 1.0, ly = 0.5, nx = 8, ny = 4\n"),
