@@ -4,8 +4,9 @@ and leaves the run's folder exactly as it was (same names, kinds, sizes, content
 targets): nothing created, nothing modified, not even a lock or temporary file.
 
 Classes: output names (the deck itself and its Gmsh mesh file, also through hard and symbolic links; the sidecar;
-directories, devices, FIFOs, dangling links, missing or non-folder parents, names too long,
-existing files and sidecars), deck files (directory, device, FIFO, oversized, missing), deck text
+directories, devices, FIFOs, dangling links, link loops, missing or non-folder parents, names too long,
+existing files and sidecars), deck files (directory, device, FIFO, oversized,
+missing, link loop), the deck's Gmsh mesh file a link loop, deck text
 (over-long lines, over-long string values, '&end', a group opened inside another, over-long
 --set), every real NaN / Inf / out of range (via --set, so each variable is named), and a mesh
 that does not fit in the memory the process may use (RLIMIT_AS).
@@ -74,6 +75,22 @@ def gmsh_deck(t, folder):
     """The shipped Hertz cylinder deck and its geometry (mesh:file = 'hertz_cylinder.geo') as deck.nml."""
     shutil.copy(t.deck("hertz_cylinder_p1.nml"), os.path.join(folder, "deck.nml"))
     shutil.copy(t.deck("hertz_cylinder.geo"), os.path.join(folder, "hertz_cylinder.geo"))
+
+
+def loop(a, b):
+    """prepare(): a symbolic link loop a -> b -> a (stat gives ELOOP)."""
+    def make(f):
+        os.symlink(b, os.path.join(f, a))
+        os.symlink(a, os.path.join(f, b))
+    return make
+
+
+def gmsh_loop_deck(t, folder):
+    """The shipped Hertz cylinder deck with mesh:file = 'l.geo', a link loop made by prepare()."""
+    with open(t.deck("hertz_cylinder_p1.nml")) as fh:
+        text = fh.read()
+    assert "'hertz_cylinder.geo'" in text
+    write(folder, "deck.nml", text.replace("'hertz_cylinder.geo'", "'l.geo'", 1))
 
 
 def nan_cases():
@@ -151,6 +168,8 @@ def cases():
          r"(File name too long|No such file)", {}),
         ("out_fifo", "u", ["-o", "f.h5", "--force"], lambda f: os.mkfifo(os.path.join(f, "f.h5")), r"'f\.h5' is a FIFO", {}),
         ("out_exists", "u", [], lambda f: write(f, "out.h5", "pre-existing\n"), r"'out\.h5' exists.*--force", {}),
+        ("out_symlink_loop", "u", ["-o", "l.h5"], loop("l.h5", "m.h5"),
+         r"'l\.h5': Too many levels of symbolic links", {}),
         ("out_empty_name", "u", ["-o", ""], None, r"output file name is empty", {}),
         # ---- deck files ----
         ("deck_directory", None, [], lambda f: os.mkdir(os.path.join(f, "d.nml")), r"'d\.nml' is a directory",
@@ -162,6 +181,11 @@ def cases():
         ("deck_missing", None, [], None, r"missing\.nml.*no such file", {"deck": "missing.nml"}),
         ("deck_dangling_link", None, [], lambda f: os.symlink("gone.nml", os.path.join(f, "l.nml")),
          r"'l\.nml'.*dangling", {"deck": "l.nml"}),
+        ("deck_symlink_loop", None, [], loop("l.nml", "m.nml"), r"'l\.nml': Too many levels of symbolic links",
+         {"deck": "l.nml"}),
+        # the deck's Gmsh mesh:file a link loop: the system's reason, not "no such file"
+        ("mesh_symlink_loop", gmsh_loop_deck, [], loop("l.geo", "m.geo"),
+         r"mesh:file = 'l\.geo': Too many levels of symbolic links", {}),
         # ---- deck text ----
         ("line_1100_blanks", edit("u", "lx = 1.0, ly = 0.5, nx = 8, ny = 4", "lx = 1.0, ly = 0.5, nx = 8, ny = 4," +
                                   " " * 1100 + "level = 3"), [], None, r"deck\.nml:9: line has \d+ characters", {}),
