@@ -13,7 +13,9 @@
 !>   OUT.h5.<pid>.partial, readable up to its last flush.
 !> - The lock .OUT.h5.lock (flock, beside the target) is held from before the file is created
 !>   until it is in place: a second run aimed at the same output refuses with one line. So is
-!>   .OUT.xmf.lock for the sidecar, which two outputs may share (run.h5 and run.dat).
+!>   .OUT.xmf.lock for the sidecar, which two outputs may share (run.h5 and run.dat). A lock path
+!>   that is a symbolic link, not a regular file, or a file holding anything but a process id is
+!>   refused (one line), never followed, truncated or removed; a stale lock is taken over.
 !> - --force replaces this output's own sidecar only: an existing OUT.xmf that points at another
 !>   HDF5 file is refused; with output:xdmf = .false. the old sidecar of OUT.h5 (which would
 !>   describe the replaced file) is removed once the new result is in place.
@@ -21,8 +23,8 @@ module contact2d_outpath
    use, intrinsic :: iso_c_binding, only: c_long_long
    use contact2d_strings, only: str
    use contact2d_sys, only: sys_path_info, sys_strerror, sys_dir_writable, sys_lock, sys_unlock, &
-                            sys_publish, sys_remove, sys_getpid, kind_missing, kind_file, kind_directory, &
-                            kind_dangling, kind_names
+                            sys_publish, sys_remove, sys_getpid, sys_lock_check, kind_missing, kind_file, &
+                            kind_directory, kind_dangling, kind_names
    implicit none
    private
    public :: outpath_t, sidecar_name
@@ -140,13 +142,23 @@ contains
       ! the temporary and lock names must be valid too (a name near the length limit)
       call check_name(this%partial, errmsg)
       if (len(errmsg) > 0) return
-      call check_name(this%lock, errmsg)
-      if (len(errmsg) > 0) return
       if (sidecar) then
          call check_name(this%xmf_partial, errmsg)
          if (len(errmsg) > 0) return
-         call check_name(this%xlock, errmsg)
-         if (len(errmsg) > 0) return
+      end if
+      ! the lock names: valid, and not a link or another file (refused now, before any set-up;
+      ! acquire checks again when it takes the lock)
+      err = sys_lock_check(this%lock)
+      if (err /= 0) then
+         errmsg = lock_refusal("output '"//target//"'", this%lock, err)
+         return
+      end if
+      if (sidecar) then
+         err = sys_lock_check(this%xlock)
+         if (err /= 0) then
+            errmsg = lock_refusal("XDMF sidecar '"//this%xmf//"'", this%xlock, err)
+            return
+         end if
       end if
       stat = 0
       errmsg = ''
@@ -201,7 +213,7 @@ contains
          return
       else if (err /= 0) then
          this%fd = -1
-         errmsg = "cannot lock output '"//this%target//"' ("//this%lock//'): '//sys_strerror(err)
+         errmsg = lock_refusal("output '"//this%target//"'", this%lock, err)
          return
       end if
       if (len(this%xlock) > 0) then
@@ -213,7 +225,7 @@ contains
                errmsg = "XDMF sidecar '"//this%xmf//"' is being written by another run (lock "//this%xlock// &
                         " held); wait for it or choose another name with -o"
             else
-               errmsg = "cannot lock XDMF sidecar '"//this%xmf//"' ("//this%xlock//'): '//sys_strerror(err)
+               errmsg = lock_refusal("XDMF sidecar '"//this%xmf//"'", this%xlock, err)
             end if
             return
          end if
@@ -228,6 +240,21 @@ contains
       stat = 0
       errmsg = ''
    end subroutine outpath_acquire
+
+   !> The one line refusing a lock path: `what` names the output or sidecar it guards.
+   function lock_refusal(what, lock, err) result(msg)
+      character(len=*), intent(in) :: what, lock
+      integer, intent(in) :: err
+      character(len=:), allocatable :: msg
+      if (err < 0) then
+         ! not a lock file this program may take: it is left exactly as it is
+         msg = 'cannot lock '//what//": its lock file '"//lock//"' "//sys_strerror(err)// &
+               '; it is left as it is (never followed, truncated or removed): move it away or choose '// &
+               'another name with -o'
+      else
+         msg = 'cannot lock '//what//' ('//lock//'): '//sys_strerror(err)
+      end if
+   end function lock_refusal
 
    !> Where a finished file ends: the target, except for a run that did not reach its end (ended
    !> false: interrupted, blow-up, solver failure) replacing an existing result with --force,

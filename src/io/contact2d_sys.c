@@ -3,7 +3,10 @@
  * - file kinds and identities (stat/lstat: regular file, directory, device, FIFO; device+inode),
  *   with the system's reason (strerror) when a call fails;
  * - the output lock: flock() on a lock file beside the output, so two runs aimed at one output
- *   cannot both write it (docs/output.md, "Output safety");
+ *   cannot both write it (docs/output.md, "Output safety"). The lock file is created without
+ *   following links (O_CREAT|O_EXCL|O_NOFOLLOW); an existing one is taken over only if it is a
+ *   regular file with one link that holds what a lock holds (a process id or nothing: a stale
+ *   lock of a killed run), never a symbolic link, another kind of file, or a file with content;
  * - link() without replacing (no-clobber publish) and rename() (replace);
  * - SIGINT/SIGTERM: the handler only stores the signal number in a sig_atomic_t; the step loop
  *   polls it once per step (no I/O, no allocation);
@@ -12,7 +15,8 @@
  * - a small text file written whole with every write, fsync and close checked (the XDMF
  *   sidecar: gfortran's formatted I/O was seen to report success on a full disk).
  *
- * Every function returns 0 on success or an errno value; message buffers are NUL-terminated.
+ * Every function returns 0 on success or an errno value, or one of the C2D_E* codes below
+ * (negative; c2d_strerror words them); message buffers are NUL-terminated.
  */
 #define _GNU_SOURCE
 #include <errno.h>
@@ -26,6 +30,14 @@
 #include <sys/types.h>
 #include <unistd.h>
 #include <hdf5.h>
+
+/* Refusals that are no errno (negative, so they never collide with one). */
+enum {
+  C2D_ESYMLINK = -1, /* the path is a symbolic link (never followed) */
+  C2D_ENOTREG = -2,  /* the path is not a regular file */
+  C2D_ELINKS = -3,   /* the file has other hard links */
+  C2D_ENOTLOCK = -4  /* the file holds something else than a lock's process id */
+};
 
 static volatile sig_atomic_t c2d_signal = 0;
 
@@ -49,10 +61,18 @@ int c2d_signals_install(void) {
 /* The signal number received (0: none). Async-signal-safe read, no side effects. */
 int c2d_signal_pending(void) { return (int)c2d_signal; }
 
-/* strerror(err) into buf. */
+/* strerror(err) into buf; the C2D_E* codes in words. */
 void c2d_strerror(int err, char *buf, int len) {
+  const char *text;
   if (len <= 0) return;
-  snprintf(buf, (size_t)len, "%s", strerror(err));
+  switch (err) {
+  case C2D_ESYMLINK: text = "is a symbolic link"; break;
+  case C2D_ENOTREG: text = "is not a regular file"; break;
+  case C2D_ELINKS: text = "has other hard links (it is another file's name too)"; break;
+  case C2D_ENOTLOCK: text = "holds something else than a lock (a lock holds a process id)"; break;
+  default: text = strerror(err);
+  }
+  snprintf(buf, (size_t)len, "%s", text);
 }
 
 /* What a path is.  kind: 0 missing, 1 regular file, 2 directory, 3 character/block device,
@@ -96,25 +116,87 @@ int c2d_dir_writable(const char *dir) {
   return 0;
 }
 
-/* Take an exclusive, non-blocking flock on lockpath (created if needed).  *fd is the open
- * descriptor to pass to c2d_unlock.  EWOULDBLOCK: another process holds it.  The lock file is
+/* May the existing file open on f be taken over as a lock?  A regular file with one link
+ * holding at most a process id and a newline (what c2d_lock writes; empty: a run killed between
+ * creating and writing it).  0 or a C2D_E* code. */
+static int lock_content_ok(int f) {
+  struct stat st;
+  char buf[40];
+  if (fstat(f, &st) != 0) return errno;
+  if (!S_ISREG(st.st_mode)) return C2D_ENOTREG;
+  if (st.st_nlink != 1) return C2D_ELINKS;
+  if (st.st_size >= (off_t)sizeof buf) return C2D_ENOTLOCK;
+  ssize_t n = pread(f, buf, sizeof buf, 0);
+  if (n < 0) return errno;
+  for (ssize_t k = 0; k < n; ++k) {
+    if (buf[k] >= '0' && buf[k] <= '9') continue;
+    if (buf[k] == '\n' && k == n - 1) continue;
+    return C2D_ENOTLOCK;
+  }
+  return 0;
+}
+
+/* Can lockpath serve as a lock file?  0 if it is missing or a lock file (stale or held), else
+ * C2D_ESYMLINK, C2D_ENOTREG, C2D_ELINKS, C2D_ENOTLOCK or an errno.  Opens nothing but a regular
+ * file, read-only, without following links; writes nothing. */
+int c2d_lock_check(const char *lockpath) {
+  struct stat st;
+  if (lstat(lockpath, &st) != 0) return errno == ENOENT ? 0 : errno;
+  if (S_ISLNK(st.st_mode)) return C2D_ESYMLINK;
+  if (!S_ISREG(st.st_mode)) return C2D_ENOTREG;
+  int f = open(lockpath, O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (f < 0) return errno == ELOOP ? C2D_ESYMLINK : (errno == ENOENT ? 0 : errno);
+  int err = lock_content_ok(f);
+  close(f);
+  return err;
+}
+
+/* Take an exclusive, non-blocking flock on lockpath.  *fd is the open descriptor to pass to
+ * c2d_unlock.  EWOULDBLOCK: another process holds it.  The file is created without following
+ * links; an existing one (a stale lock) is used only if c2d_lock_check would accept it, so a
+ * planted link or another file is never followed, truncated or removed.  The lock file is
  * re-checked after locking (same inode as the path), so a lock file unlinked by its previous
  * holder between our open and our flock is not trusted. */
 int c2d_lock(const char *lockpath, int *fd) {
   for (int attempt = 0; attempt < 8; ++attempt) {
-    int f = open(lockpath, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (f < 0) return errno;
+    int created = 1;
+    int f = open(lockpath, O_RDWR | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (f < 0) {
+      if (errno != EEXIST) return errno;
+      created = 0;
+      struct stat st;
+      if (lstat(lockpath, &st) != 0) {
+        if (errno == ENOENT) continue; /* removed meanwhile: try again */
+        return errno;
+      }
+      if (S_ISLNK(st.st_mode)) return C2D_ESYMLINK;
+      if (!S_ISREG(st.st_mode)) return C2D_ENOTREG;
+      f = open(lockpath, O_RDWR | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+      if (f < 0) {
+        if (errno == ENOENT) continue;
+        return errno == ELOOP ? C2D_ESYMLINK : errno;
+      }
+    }
     if (flock(f, LOCK_EX | LOCK_NB) != 0) {
       int err = errno;
       close(f);
       return err;
     }
     struct stat a, b;
-    if (fstat(f, &a) == 0 && stat(lockpath, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino) {
+    if (fstat(f, &a) == 0 && lstat(lockpath, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino) {
+      if (!created) {
+        /* checked under the lock: no other run writes it now */
+        int err = lock_content_ok(f);
+        if (err != 0) {
+          flock(f, LOCK_UN);
+          close(f);
+          return err;
+        }
+      }
       char pid[32];
       int n = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
       if (ftruncate(f, 0) == 0 && n > 0) {
-        ssize_t w = write(f, pid, (size_t)n);
+        ssize_t w = pwrite(f, pid, (size_t)n, 0);
         (void)w;
       }
       *fd = f;
@@ -125,10 +207,13 @@ int c2d_lock(const char *lockpath, int *fd) {
   return EAGAIN;
 }
 
-/* Remove the lock file, then release the lock. */
+/* Remove the lock file (only if the path still names the file locked on fd), then release the
+ * lock. */
 void c2d_unlock(const char *lockpath, int fd) {
+  struct stat a, b;
   if (fd < 0) return;
-  unlink(lockpath);
+  if (fstat(fd, &a) == 0 && lstat(lockpath, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino)
+    unlink(lockpath);
   flock(fd, LOCK_UN);
   close(fd);
 }

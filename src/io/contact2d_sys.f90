@@ -1,19 +1,24 @@
 !> POSIX services for output safety and interrupts (C in contact2d_sys.c, bound here):
 !> file kinds and identities, the output lock, no-clobber publish, the SIGINT/SIGTERM flag and
-!> the system's reason of the last HDF5 failure. Every routine returns 0 or an errno value;
-!> sys_strerror turns it into the system's text.
+!> the system's reason of the last HDF5 failure. Every routine returns 0, an errno value or one
+!> of the sys_e* refusals; sys_strerror turns it into words.
 module contact2d_sys
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long_long, c_null_char
    implicit none
    private
    public :: sys_signals_install, sys_signal_pending, sys_strerror, sys_path_info, sys_dir_writable
    public :: sys_lock, sys_unlock, sys_publish, sys_remove, sys_h5_reason, sys_getpid, sys_exit_now, sys_write_file
+   public :: sys_lock_check
+   public :: sys_esymlink, sys_enotreg, sys_elinks, sys_enotlock
    public :: kind_missing, kind_file, kind_directory, kind_device, kind_fifo, kind_socket, &
              kind_other, kind_dangling, kind_names
 
    !> What a path is (sys_path_info).
    integer, parameter :: kind_missing = 0, kind_file = 1, kind_directory = 2, kind_device = 3, &
                          kind_fifo = 4, kind_socket = 5, kind_other = 6, kind_dangling = 7
+   !> Refusals that are no errno (contact2d_sys.c, C2D_E*): the path is a symbolic link, not a
+   !> regular file, has other hard links, holds something else than a lock.
+   integer, parameter :: sys_esymlink = -1, sys_enotreg = -2, sys_elinks = -3, sys_enotlock = -4
    character(len=24), parameter :: kind_names(0:7) = [character(len=24) :: 'missing', 'regular file', &
       'directory', 'device', 'FIFO', 'socket', 'special file', 'dangling symbolic link']
 
@@ -44,6 +49,10 @@ module contact2d_sys
          character(kind=c_char), intent(in) :: path(*)
          integer(c_int), intent(out) :: fd
       end function c2d_lock
+      integer(c_int) function c2d_lock_check(path) bind(C, name='c2d_lock_check')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+      end function c2d_lock_check
       subroutine c2d_unlock(path, fd) bind(C, name='c2d_unlock')
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
@@ -134,7 +143,15 @@ contains
       fd = int(f)
    end function sys_lock
 
-   !> Remove the lock file and release the lock.
+   !> 0 if path may serve as a lock file (missing, or a regular file with one link holding a
+   !> process id or nothing: a stale lock), else sys_esymlink, sys_enotreg, sys_elinks,
+   !> sys_enotlock or an errno. Writes nothing.
+   integer function sys_lock_check(path) result(err)
+      character(len=*), intent(in) :: path
+      err = int(c2d_lock_check(path//c_null_char))
+   end function sys_lock_check
+
+   !> Remove the lock file (if the path still names it) and release the lock.
    subroutine sys_unlock(path, fd)
       character(len=*), intent(in) :: path
       integer, intent(in) :: fd

@@ -7,7 +7,8 @@
   engine, a blow-up): the result and its sidecar are byte for byte intact, the run's complete file
   is kept as OUT.h5.<pid>.partial with its status, named on the one stderr line.
 - kill -9 of a --force run over an existing result: the result is byte for byte intact, the
-  killed run's OUT.h5.<pid>.partial is there and opens (what was flushed is readable).
+  killed run's OUT.h5.<pid>.partial is there and opens (what was flushed is readable); a later
+  run takes over the stale lock and leaves only that partial file.
 - Two runs on one output: while one writes, a second --force run is refused with one line and
   writes nothing; two runs started together leave one valid result.
 - A write that fails (file size limit RLIMIT_FSIZE, the kernel's EFBIG, and a full tmpfs where
@@ -280,6 +281,9 @@ def body(t):
     # a later run to the same output is not blocked by the dead run (its flock died with it)
     rc, err, _ = finish(start(t, folder, quick[0], ["--force"]))
     t.check_equal(name, "a later --force run succeeds", 0, rc)
+    # the killed run's stale lock (its process id) was taken over and removed; its partial kept
+    t.check_equal(name, "after the later run: only the killed run's partial file left",
+                  [os.path.basename(partial)], leftovers(folder))
 
     # ---- --force onto a result another process holds open ------------------------------------
     name = "force_while_open"

@@ -5,7 +5,9 @@ targets): nothing created, nothing modified, not even a lock or temporary file.
 
 Classes: output names (the deck itself and its Gmsh mesh file, also through hard and symbolic links; the sidecar;
 directories, devices, FIFOs, dangling links, link loops, missing or non-folder parents, names too long,
-existing files and sidecars), deck files (directory, device, FIFO, oversized,
+existing files and sidecars), lock files planted beside the output (a symbolic link to the user's
+file, dangling or looping, a hard link, a file with other content, a FIFO, a directory: refused,
+left as they are, the link's target untouched), deck files (directory, device, FIFO, oversized,
 missing, link loop), the deck's Gmsh mesh file a link loop, deck text
 (over-long lines, over-long string values, '&end', a group opened inside another, over-long
 --set), every real NaN / Inf / out of range (via --set, so each variable is named), and a mesh
@@ -75,6 +77,23 @@ def gmsh_deck(t, folder):
     """The shipped Hertz cylinder deck and its geometry (mesh:file = 'hertz_cylinder.geo') as deck.nml."""
     shutil.copy(t.deck("hertz_cylinder_p1.nml"), os.path.join(folder, "deck.nml"))
     shutil.copy(t.deck("hertz_cylinder.geo"), os.path.join(folder, "hertz_cylinder.geo"))
+
+
+def plant_link(name, target):
+    """prepare(): a symbolic link `name` -> `target` in the case's folder."""
+    return lambda f: os.symlink(target, os.path.join(f, name))
+
+
+def plant_precious(how, name):
+    """prepare(): the user's precious.txt, and under the lock name `name` a symbolic link to it
+    (how = 'symlink') or a second hard link (how = 'hardlink')."""
+    def make(f):
+        write(f, "precious.txt", "the user's data\n")
+        if how == "symlink":
+            os.symlink("precious.txt", os.path.join(f, name))
+        else:
+            os.link(os.path.join(f, "precious.txt"), os.path.join(f, name))
+    return make
 
 
 def loop(a, b):
@@ -170,6 +189,24 @@ def cases():
         ("out_exists", "u", [], lambda f: write(f, "out.h5", "pre-existing\n"), r"'out\.h5' exists.*--force", {}),
         ("out_symlink_loop", "u", ["-o", "l.h5"], loop("l.h5", "m.h5"),
          r"'l\.h5': Too many levels of symbolic links", {}),
+        # ---- lock files: created without following links; a planted link or another file is
+        # refused and left as it is (its target untouched); a stale lock is taken over (test_faults)
+        ("lock_symlink", "u", [], plant_precious("symlink", ".out.h5.lock"),
+         r"output 'out\.h5': its lock file '\.out\.h5\.lock' is a symbolic link", {}),
+        ("xlock_symlink", "u", [], plant_precious("symlink", ".out.xmf.lock"),
+         r"sidecar 'out\.xmf': its lock file '\.out\.xmf\.lock' is a symbolic link", {}),
+        ("lock_dangling_symlink", "u", [], plant_link(".out.h5.lock", "made_by_the_run"),
+         r"lock file '\.out\.h5\.lock' is a symbolic link", {}),
+        ("lock_symlink_loop", "u", [], loop(".out.h5.lock", ".other.lock"),
+         r"lock file '\.out\.h5\.lock' is a symbolic link", {}),
+        ("lock_hard_link", "u", [], plant_precious("hardlink", ".out.h5.lock"),
+         r"lock file '\.out\.h5\.lock' has other hard links", {}),
+        ("lock_holds_text", "u", [], lambda f: write(f, ".out.h5.lock", "my notes\n"),
+         r"lock file '\.out\.h5\.lock' holds something else than a lock", {}),
+        ("lock_fifo", "u", [], lambda f: os.mkfifo(os.path.join(f, ".out.h5.lock")),
+         r"lock file '\.out\.h5\.lock' is not a regular file", {}),
+        ("lock_directory", "u", [], lambda f: os.mkdir(os.path.join(f, ".out.h5.lock")),
+         r"lock file '\.out\.h5\.lock' is not a regular file", {}),
         ("out_empty_name", "u", ["-o", ""], None, r"output file name is empty", {}),
         # ---- deck files ----
         ("deck_directory", None, [], lambda f: os.mkdir(os.path.join(f, "d.nml")), r"'d\.nml' is a directory",
