@@ -9,6 +9,9 @@
 - kill -9 of a --force run over an existing result: the result is byte for byte intact, the
   killed run's OUT.h5.<pid>.partial is there and opens (what was flushed is readable); a later
   run takes over the stale lock and leaves only that partial file.
+- PID reuse (a PID namespace, where the solver is PID 1 in every run): a later run takes another
+  temporary name and leaves the earlier run's OUT.h5.1.partial and sidecar byte for byte; a link
+  planted under the sidecar's temporary name is not followed.
 - Two runs on one output: while one writes, a second --force run is refused with one line and
   writes nothing; two runs started together leave one valid result.
 - A write that fails (file size limit RLIMIT_FSIZE, the kernel's EFBIG, and a full tmpfs where
@@ -211,6 +214,10 @@ def disk_full_sweep(t):
                     if now != good:
                         t.check(where, "the old result and sidecar unchanged", False, True, True)
                     partial = os.path.join(mnt, "out.h5.%d.partial" % proc.pid)
+                    if err and "creating the file" in err[0] and os.path.exists(partial):
+                        # docs/output.md: an output that cannot even be created leaves no file
+                        t.check(where, "an output that could not be created leaves no file", False, "no file",
+                                "%s (%d bytes)" % (os.path.basename(partial), os.path.getsize(partial)))
                     if os.path.exists(partial):
                         try:
                             with h5py.File(partial, "r") as f:
@@ -234,6 +241,70 @@ def disk_full_sweep(t):
                 os.remove(os.path.join(mnt, n))
     finally:
         subprocess.run(["umount", mnt])
+
+
+NAMESPACE = ["unshare", "--pid", "--fork", "--mount-proc", "--kill-child"]
+
+
+def pid_reuse(t):
+    """PID reuse: in a PID namespace (a container) the solver is PID 1 in every run, so a run's
+    temporary name OUT.h5.1.partial is an earlier run's. A run killed by SIGKILL leaves
+    out.h5.1.partial (with, planted here, an earlier sidecar out.xmf.1.partial); the next run
+    in a namespace must take another temporary name, succeed, and leave both files byte for
+    byte (it did not create them, so it never removes them). A symbolic link planted under the
+    sidecar's temporary name is never followed (the user's file it points to keeps its bytes)."""
+    probe = subprocess.run(NAMESPACE + ["true"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    if probe.returncode != 0:
+        print("SKIP pid_reuse: cannot make a PID namespace here (%s)" % probe.stdout.decode("utf-8", "replace").strip())
+        return
+
+    def in_namespace(folder, deck, args):
+        cmd = NAMESPACE + [t.exe, deck, "-o", "out.h5", "-q"] + list(args)
+        print("-- start (cd %s && %s)" % (folder, " ".join(cmd)))
+        return subprocess.Popen(cmd, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=ENV,
+                                start_new_session=True)
+
+    name = "pid_reuse"
+    folder = t.subdir(name)
+    first = in_namespace(folder, t.deck(LONG), LONG_ARGS)
+    partial = wait_for(os.path.join(folder, "out.h5.1.partial"))
+    t.require(partial is not None, name + ": the first run (PID 1 in its namespace) writes out.h5.1.partial")
+    time.sleep(1.0)
+    os.killpg(first.pid, signal.SIGKILL)   # the solver and unshare: kill -9, nothing cleans up
+    first.communicate()
+    with open(os.path.join(folder, "out.xmf.1.partial"), "w") as fh:
+        fh.write("<Xdmf>an earlier run's sidecar</Xdmf>\n")
+    kept = {n: sha(os.path.join(folder, n)) for n in ("out.h5.1.partial", "out.xmf.1.partial")}
+    rc, err, _ = finish(in_namespace(folder, t.deck(UNIAXIAL), []))
+    t.check_equal(name, "the second run (PID 1 again) exit code", 0, rc)
+    t.check_equal(name, "stderr lines", 0, len(err))
+    for n in kept:
+        t.check_equal(name, "the earlier run's %s unchanged (sha256)" % n, kept[n],
+                      sha(os.path.join(folder, n)) if os.path.exists(os.path.join(folder, n)) else "missing")
+    if os.path.exists(os.path.join(folder, "out.h5")):
+        with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+            t.check_equal(name, "the second run's result in place", "converged", c2dtest.attr_str(f.attrs["status"]))
+    else:
+        t.check(name, "the second run's result in place", False, "out.h5", "missing")
+    t.check_equal(name, "left beside the result: the earlier files only (no lock, no temporary of its own)",
+                  sorted(kept), leftovers(folder))
+
+    name = "pid_reuse_sidecar_link"
+    folder = t.subdir(name)
+    with open(os.path.join(folder, "precious.txt"), "w") as fh:
+        fh.write("the user's data\n")
+    before = sha(os.path.join(folder, "precious.txt"))
+    os.symlink("precious.txt", os.path.join(folder, "out.xmf.1.partial"))
+    rc, err, _ = finish(in_namespace(folder, t.deck(UNIAXIAL), []))
+    t.check_equal(name, "exit code", 0, rc)
+    t.check_equal(name, "precious.txt behind the planted link unchanged (sha256)", before,
+                  sha(os.path.join(folder, "precious.txt")))
+    t.check_equal(name, "the planted link left as it is", "precious.txt",
+                  os.readlink(os.path.join(folder, "out.xmf.1.partial"))
+                  if os.path.islink(os.path.join(folder, "out.xmf.1.partial")) else "not a link")
+    t.check_equal(name, "out.xmf is the run's own regular file", True,
+                  os.path.isfile(os.path.join(folder, "out.xmf")) and not os.path.islink(os.path.join(folder, "out.xmf")))
+    t.check_equal(name, "left beside the result: the planted link only", ["out.xmf.1.partial"], leftovers(folder))
 
 
 def body(t):
@@ -284,6 +355,7 @@ def body(t):
     # the killed run's stale lock (its process id) was taken over and removed; its partial kept
     t.check_equal(name, "after the later run: only the killed run's partial file left",
                   [os.path.basename(partial)], leftovers(folder))
+    pid_reuse(t)
 
     # ---- --force onto a result another process holds open ------------------------------------
     name = "force_while_open"
