@@ -22,7 +22,8 @@
 !>   them by device and inode); the one exception is the replaced result's old sidecar below.
 !> - --force replaces this output's own sidecar only: an existing OUT.xmf that points at another
 !>   HDF5 file is refused; with output:xdmf = .false. the old sidecar of OUT.h5 (which would
-!>   describe the replaced file) is removed once the new result is in place.
+!>   describe the replaced file) is removed once the new result is in place, under the sidecar's
+!>   lock, if it is still a regular file describing OUT.h5 (a symbolic link is left alone).
 module contact2d_outpath
    use, intrinsic :: iso_c_binding, only: c_long_long
    use contact2d_strings, only: str
@@ -133,8 +134,13 @@ contains
             return
          end if
       else if (force) then
-         ! the sidecar of the result being replaced would describe the old file: removed at the end
-         if (sidecar_refers(sidecar_name(target)) == base) this%stale = sidecar_name(target)
+         ! the sidecar of the result being replaced would describe the old file: removed at the
+         ! end, under its lock (no other run publishes it meanwhile), if it still describes it
+         if (sidecar_refers(sidecar_name(target)) == base) then
+            this%stale = sidecar_name(target)
+            slash = index(this%stale, '/', back=.true.)
+            this%xlock = this%stale(1:slash)//'.'//this%stale(slash + 1:)//'.lock'
+         end if
       end if
       ! the folder must exist and take new files (the system's reason otherwise)
       if (len(dir) == 0) dir = './'
@@ -157,10 +163,10 @@ contains
          errmsg = lock_refusal("output '"//target//"'", this%lock, err)
          return
       end if
-      if (sidecar) then
+      if (len(this%xlock) > 0) then
          err = sys_lock_check(this%xlock)
          if (err /= 0) then
-            errmsg = lock_refusal("XDMF sidecar '"//this%xmf//"'", this%xlock, err)
+            errmsg = lock_refusal("XDMF sidecar '"//sidecar_name(target)//"'", this%xlock, err)
             return
          end if
       end if
@@ -226,10 +232,10 @@ contains
             this%xfd = -1
             call this%abandon(.false.)
             if (err == 11) then
-               errmsg = "XDMF sidecar '"//this%xmf//"' is being written by another run (lock "//this%xlock// &
-                        " held); wait for it or choose another name with -o"
+               errmsg = "XDMF sidecar '"//sidecar_name(this%target)//"' is being written by another run (lock "// &
+                        this%xlock//" held); wait for it or choose another name with -o"
             else
-               errmsg = lock_refusal("XDMF sidecar '"//this%xmf//"'", this%xlock, err)
+               errmsg = lock_refusal("XDMF sidecar '"//sidecar_name(this%target)//"'", this%xlock, err)
             end if
             return
          end if
@@ -351,7 +357,12 @@ contains
                      '; the complete result stays in '//this%partial
          end if
       end if
-      if (stat == 0 .and. len(this%stale) > 0) err = sys_remove(this%stale)
+      ! the replaced result's old sidecar, if it still describes this output (a regular file:
+      ! sys_remove leaves a link alone)
+      if (stat == 0 .and. len(this%stale) > 0) then
+         if (sidecar_refers(this%stale) == this%target(index(this%target, '/', back=.true.) + 1:)) &
+            err = sys_remove(this%stale)
+      end if
       call release(this)
    end subroutine outpath_publish
 

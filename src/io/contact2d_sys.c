@@ -303,10 +303,15 @@ int c2d_write_file(const char *path, const char *buf, long long len) {
   return 0;
 }
 
-/* Remove a file (0 or errno; ENOENT counts as success).  Only for the one file a user's
- * --force gives up (the old sidecar of the replaced result, docs/output.md); a temporary file
- * goes with c2d_remove_own. */
+/* Remove a regular file (0 or errno; ENOENT counts as success; a symbolic link or another kind
+ * of file is left alone: C2D_ESYMLINK, C2D_ENOTREG).  Only for the one file a user's --force
+ * gives up (the old sidecar of the replaced result, docs/output.md); a temporary file goes with
+ * c2d_remove_own. */
 int c2d_remove(const char *path) {
+  struct stat st;
+  if (lstat(path, &st) != 0) return errno == ENOENT ? 0 : errno;
+  if (S_ISLNK(st.st_mode)) return C2D_ESYMLINK; /* the user's link: left alone */
+  if (!S_ISREG(st.st_mode)) return C2D_ENOTREG;
   if (unlink(path) != 0 && errno != ENOENT) return errno;
   return 0;
 }

@@ -208,8 +208,9 @@ contains
       err = int(c2d_write_file(path//c_null_char, text, int(len(text), c_long_long)))
    end function sys_write_file
 
-   !> Remove a file (a missing file is no error). Only for the old sidecar a user's --force gives
-   !> up (docs/output.md); temporary files go with sys_remove_own.
+   !> Remove a regular file (a missing file is no error; a link or another kind of file is left
+   !> alone: sys_esymlink, sys_enotreg). Only for the old sidecar a user's --force gives up
+   !> (docs/output.md); temporary files go with sys_remove_own.
    integer function sys_remove(path) result(err)
       character(len=*), intent(in) :: path
       err = int(c2d_remove(path//c_null_char))

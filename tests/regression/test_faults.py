@@ -430,6 +430,20 @@ def body(t):
     t.check_equal(name, "--force with xdmf off beside a FIFO named like the sidecar: exit code", 0, rc)
     t.check_equal(name, "the FIFO left alone", True, os.path.exists(os.path.join(folder, "same.xmf")))
     os.remove(os.path.join(folder, "same.xmf"))
+    # a symbolic link named like the old sidecar (to the user's own sidecar of same.h5, kept
+    # elsewhere) is the user's: the run removes only a regular sidecar file, never a link
+    os.mkdir(os.path.join(folder, "mine"))
+    with open(os.path.join(folder, "mine", "same.xmf"), "w") as fh:
+        fh.write('<DataItem Dimensions="1" Format="HDF">same.h5:/mesh/coordinates</DataItem>\n')
+    mine = sha(os.path.join(folder, "mine", "same.xmf"))
+    os.symlink(os.path.join("mine", "same.xmf"), os.path.join(folder, "same.xmf"))
+    rc, err, _ = finish(start(t, folder, quick[0], ["--force", "--set", "output:xdmf=.false."], out="same.h5"))
+    t.check_equal(name, "--force with xdmf off beside a link named like the sidecar: exit code", 0, rc)
+    t.check_equal(name, "the link same.xmf left alone", os.path.join("mine", "same.xmf"),
+                  os.readlink(os.path.join(folder, "same.xmf")) if os.path.islink(os.path.join(folder, "same.xmf"))
+                  else "removed")
+    t.check_equal(name, "the file it points to unchanged (sha256)", mine, sha(os.path.join(folder, "mine", "same.xmf")))
+    t.check_equal(name, "no temporary or lock file left", [], leftovers(folder))
 
     # ---- a write that fails: file size limit (EFBIG) ----------------------------------------
     name = "write_fails"
