@@ -355,6 +355,9 @@ contains
             stat = 2
             errmsg = "cannot move '"//this%partial//"' to '"//this%target//"': "//sys_strerror(err)// &
                      '; the complete result stays in '//this%partial
+            ! the sidecar, moved first, names the target, which is not this run's result (a file
+            ! that appeared meanwhile): taken back (without --force no sidecar was there before)
+            if (len(this%xmf) > 0 .and. .not. this%force) err = sys_remove_own(this%xmf)
          end if
       end if
       ! the replaced result's old sidecar, if it still describes this output (a regular file:

@@ -12,6 +12,8 @@
 - PID reuse (a PID namespace, where the solver is PID 1 in every run): a later run takes another
   temporary name and leaves the earlier run's OUT.h5.1.partial and sidecar byte for byte; a link
   planted under the sidecar's temporary name is not followed.
+- A file that appears under the output's name while a run writes (no --force): exit 2, one line,
+  the run's complete file kept under its temporary name, the other file and no sidecar for it.
 - Two runs on one output: while one writes, a second --force run is refused with one line and
   writes nothing; two runs started together leave one valid result.
 - A write that fails (file size limit RLIMIT_FSIZE, the kernel's EFBIG, and a full tmpfs where
@@ -307,6 +309,42 @@ def pid_reuse(t):
     t.check_equal(name, "left beside the result: the planted link only", ["out.xmf.1.partial"], leftovers(folder))
 
 
+def publish_refused(t):
+    """A file named like the output appears while a run writes (another program, a user; no
+    --force): the run's move into place, which never replaces a file, fails. The run exits 2 with
+    one line naming its temporary file; that file is kept, complete (the line says "the complete
+    result stays in" it), the other file keeps its bytes, and the sidecar moved just before is
+    taken back (it would describe the other file). Explicit and static engines."""
+    for engine, args in (("explicit", ["--set", "mesh:level=2", "--set", "solver:tol_residual=1e-300",
+                                       "--set", "solver:t_end=1.0", "--set", "solver:max_steps=200000"]),
+                         ("static", ["--static", "--set", "mesh:level=2", "--set", "solver:static_increments=20000"])):
+        name = "publish_refused_" + engine
+        folder = t.subdir(name)
+        proc = start(t, folder, t.deck(LONG), args)
+        partial = wait_for(os.path.join(folder, "out.h5.%d.partial" % proc.pid))
+        t.require(partial is not None, name + ": the run writes its partial file")
+        with open(os.path.join(folder, "out.h5"), "w") as fh:
+            fh.write("another program's file\n")
+        theirs = sha(os.path.join(folder, "out.h5"))
+        rc, err, _ = finish(proc)
+        t.require(proc.poll() is not None, name + ": the run ended")
+        t.check_equal(name, "exit code", 2, rc)
+        t.check(name, "one line: File exists, the result stays in the partial file",
+                len(err) == 1 and "File exists" in err[0] and "stays in " + os.path.basename(partial) in err[0],
+                "one line '... File exists; the complete result stays in %s'" % os.path.basename(partial), err)
+        t.check_equal(name, "the other out.h5 unchanged (sha256)", theirs, sha(os.path.join(folder, "out.h5")))
+        t.check_equal(name, "no sidecar out.xmf describing the other file", False,
+                      os.path.lexists(os.path.join(folder, "out.xmf")))
+        t.check_equal(name, "left: the named partial file only (no lock)", [os.path.basename(partial)],
+                      leftovers(folder))
+        if os.path.exists(partial):
+            with h5py.File(partial, "r") as f:
+                t.check(name, "the kept file is complete (status set, /final/displacement finite)",
+                        c2dtest.attr_str(f.attrs["status"]) != "running" and
+                        np.isfinite(f["final/displacement"][:]).all(), "complete",
+                        c2dtest.attr_str(f.attrs["status"]))
+
+
 def body(t):
     quick = [t.deck(UNIAXIAL)]
     # ---- interrupts -------------------------------------------------------------------------
@@ -356,6 +394,7 @@ def body(t):
     t.check_equal(name, "after the later run: only the killed run's partial file left",
                   [os.path.basename(partial)], leftovers(folder))
     pid_reuse(t)
+    publish_refused(t)
 
     # ---- --force onto a result another process holds open ------------------------------------
     name = "force_while_open"
