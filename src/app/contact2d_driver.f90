@@ -128,6 +128,7 @@ contains
                          replacing=opath%replacing, ended=static_ended)
          if (static_written) then
             dest = opath%destination(static_ended)
+            keep_partial = .true.   ! complete: a move that fails (named in its message) keeps it
             call opath%publish(i, static_msg, static_ended)
             if (i /= 0) call fail(2, static_msg)
             keep_partial = dest /= opath%target   ! kept at its temporary name: not removed below

@@ -4,8 +4,8 @@
 !> Every hdferr is checked. The first failure is kept in the handle (stat, errmsg) and later
 !> calls on that handle do nothing, so a caller writes a batch and checks `ok()` once.
 module contact2d_h5
-   use contact2d_sys, only: sys_h5_reason
-   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char
+   use contact2d_sys, only: sys_h5_reason, sys_h5_register, sys_h5_claim_failed
+   use, intrinsic :: iso_c_binding, only: c_ptr, c_loc, c_char, c_null_char, c_int64_t
    use contact2d_kinds, only: wp
    use hdf5, only: hid_t, hsize_t, h5open_f, h5fcreate_f, h5fclose_f, h5fflush_f, &
                    h5gcreate_f, h5gclose_f, h5screate_f, h5screate_simple_f, h5sclose_f, &
@@ -73,12 +73,14 @@ contains
       h5file_ok = this%stat == 0
    end function h5file_ok
 
-   !> Create a file; with overwrite false an existing file is an error.
+   !> Create a file; with overwrite false an existing file is an error (O_EXCL: a link there is
+   !> not followed either) and the new file is registered as this process's own (contact2d_sys:
+   !> only such files are ever moved into place or removed).
    subroutine h5file_create(this, path, overwrite)
       class(h5file_t), intent(inout) :: this
       character(len=*), intent(in) :: path
       logical, intent(in) :: overwrite
-      integer :: hdferr
+      integer :: hdferr, ios
       this%path = path
       this%stat = 0
       this%errmsg = ''
@@ -94,6 +96,13 @@ contains
          call h5fcreate_f(path, H5F_ACC_TRUNC_F, this%id, hdferr)
       else
          call h5fcreate_f(path, H5F_ACC_EXCL_F, this%id, hdferr)
+         if (hdferr >= 0) then
+            if (sys_h5_register(int(this%id, c_int64_t)) /= 0) hdferr = -1
+         else
+            ! a create that failed after its exclusive open (a full disk) leaves an empty file:
+            ! ours to remove, unless the name was taken (EEXIST)
+            ios = sys_h5_claim_failed(path)
+         end if
       end if
       call this%fail(hdferr, 'creating the file')
    end subroutine h5file_create

@@ -5,7 +5,9 @@
 !>   (same device and inode, so also through links), not a directory, device, FIFO or dangling
 !>   link, a folder that exists and can be written, names the system accepts; an existing file
 !>   needs --force. Each refusal is one line with the system's reason where there is one.
-!> - A run writes OUT.h5.<pid>.partial (and OUT.xmf.<pid>.partial) beside the target and moves
+!> - A run writes OUT.h5.<pid>.partial (and OUT.xmf.<pid>.partial) beside the target, or, when
+!>   either name is taken (an earlier run's kept file: in a container every run may be PID 1),
+!>   OUT.h5.<pid>.<k>.partial with the smallest free k >= 1, chosen under the lock; it moves
 !>   them into place only when complete, at every end (converged, not converged, blow-up,
 !>   contact failure, interrupted). Without --force the move never replaces a file (link +
 !>   unlink, atomic); with --force it is one rename(). An existing result is therefore intact
@@ -13,16 +15,21 @@
 !>   OUT.h5.<pid>.partial, readable up to its last flush.
 !> - The lock .OUT.h5.lock (flock, beside the target) is held from before the file is created
 !>   until it is in place: a second run aimed at the same output refuses with one line. So is
-!>   .OUT.xmf.lock for the sidecar, which two outputs may share (run.h5 and run.dat).
+!>   .OUT.xmf.lock for the sidecar, which two outputs may share (run.h5 and run.dat). A lock path
+!>   that is a symbolic link, not a regular file, or a file holding anything but a process id is
+!>   refused (one line), never followed, truncated or removed; a stale lock is taken over.
+!> - The run moves into place or removes only files it created itself (contact2d_sys registers
+!>   them by device and inode); the one exception is the replaced result's old sidecar below.
 !> - --force replaces this output's own sidecar only: an existing OUT.xmf that points at another
 !>   HDF5 file is refused; with output:xdmf = .false. the old sidecar of OUT.h5 (which would
-!>   describe the replaced file) is removed once the new result is in place.
+!>   describe the replaced file) is removed once the new result is in place, under the sidecar's
+!>   lock, if it is still a regular file describing OUT.h5 (a symbolic link is left alone).
 module contact2d_outpath
    use, intrinsic :: iso_c_binding, only: c_long_long
    use contact2d_strings, only: str
    use contact2d_sys, only: sys_path_info, sys_strerror, sys_dir_writable, sys_lock, sys_unlock, &
-                            sys_publish, sys_remove, sys_getpid, kind_missing, kind_file, kind_directory, &
-                            kind_dangling, kind_names
+                            sys_publish, sys_remove, sys_remove_own, sys_getpid, sys_lock_check, &
+                            kind_missing, kind_file, kind_directory, kind_dangling, kind_names
    implicit none
    private
    public :: outpath_t, sidecar_name
@@ -30,9 +37,9 @@ module contact2d_outpath
    !> Names of one run's output files and the state of its lock.
    type :: outpath_t
       character(len=:), allocatable :: target       !< OUT.h5 as given
-      character(len=:), allocatable :: partial      !< OUT.h5.<pid>.partial
+      character(len=:), allocatable :: partial      !< OUT.h5.<pid>.partial (or .<pid>.<k>.partial)
       character(len=:), allocatable :: xmf          !< OUT.xmf ('' without sidecar)
-      character(len=:), allocatable :: xmf_partial  !< OUT.xmf.<pid>.partial
+      character(len=:), allocatable :: xmf_partial  !< OUT.xmf.<pid>.partial (same suffix as partial)
       character(len=:), allocatable :: lock         !< .OUT.h5.lock in the same folder
       character(len=:), allocatable :: xlock        !< .OUT.xmf.lock ('' without sidecar)
       character(len=:), allocatable :: stale        !< OUT.xmf of the replaced result, to remove
@@ -127,8 +134,13 @@ contains
             return
          end if
       else if (force) then
-         ! the sidecar of the result being replaced would describe the old file: removed at the end
-         if (sidecar_refers(sidecar_name(target)) == base) this%stale = sidecar_name(target)
+         ! the sidecar of the result being replaced would describe the old file: removed at the
+         ! end, under its lock (no other run publishes it meanwhile), if it still describes it
+         if (sidecar_refers(sidecar_name(target)) == base) then
+            this%stale = sidecar_name(target)
+            slash = index(this%stale, '/', back=.true.)
+            this%xlock = this%stale(1:slash)//'.'//this%stale(slash + 1:)//'.lock'
+         end if
       end if
       ! the folder must exist and take new files (the system's reason otherwise)
       if (len(dir) == 0) dir = './'
@@ -140,13 +152,23 @@ contains
       ! the temporary and lock names must be valid too (a name near the length limit)
       call check_name(this%partial, errmsg)
       if (len(errmsg) > 0) return
-      call check_name(this%lock, errmsg)
-      if (len(errmsg) > 0) return
       if (sidecar) then
          call check_name(this%xmf_partial, errmsg)
          if (len(errmsg) > 0) return
-         call check_name(this%xlock, errmsg)
-         if (len(errmsg) > 0) return
+      end if
+      ! the lock names: valid, and not a link or another file (refused now, before any set-up;
+      ! acquire checks again when it takes the lock)
+      err = sys_lock_check(this%lock)
+      if (err /= 0) then
+         errmsg = lock_refusal("output '"//target//"'", this%lock, err)
+         return
+      end if
+      if (len(this%xlock) > 0) then
+         err = sys_lock_check(this%xlock)
+         if (err /= 0) then
+            errmsg = lock_refusal("XDMF sidecar '"//sidecar_name(target)//"'", this%xlock, err)
+            return
+         end if
       end if
       stat = 0
       errmsg = ''
@@ -201,7 +223,7 @@ contains
          return
       else if (err /= 0) then
          this%fd = -1
-         errmsg = "cannot lock output '"//this%target//"' ("//this%lock//'): '//sys_strerror(err)
+         errmsg = lock_refusal("output '"//this%target//"'", this%lock, err)
          return
       end if
       if (len(this%xlock) > 0) then
@@ -210,10 +232,10 @@ contains
             this%xfd = -1
             call this%abandon(.false.)
             if (err == 11) then
-               errmsg = "XDMF sidecar '"//this%xmf//"' is being written by another run (lock "//this%xlock// &
-                        " held); wait for it or choose another name with -o"
+               errmsg = "XDMF sidecar '"//sidecar_name(this%target)//"' is being written by another run (lock "// &
+                        this%xlock//" held); wait for it or choose another name with -o"
             else
-               errmsg = "cannot lock XDMF sidecar '"//this%xmf//"' ("//this%xlock//'): '//sys_strerror(err)
+               errmsg = lock_refusal("XDMF sidecar '"//sidecar_name(this%target)//"'", this%xlock, err)
             end if
             return
          end if
@@ -225,9 +247,73 @@ contains
          errmsg = "output file '"//this%target//"' exists; use --force to overwrite it or -o to choose another"
          return
       end if
+      call choose_temporaries(this, errmsg)
+      if (len(errmsg) > 0) then
+         call this%abandon(.false.)
+         return
+      end if
       stat = 0
       errmsg = ''
    end subroutine outpath_acquire
+
+   !> The temporary names, chosen under the lock: OUT.h5.<pid>.partial and OUT.xmf.<pid>.partial,
+   !> or, when either name is taken by anything (an earlier run's kept file: with PID namespaces
+   !> every run in a container may have the same pid; a link), OUT.h5.<pid>.<k>.partial and
+   !> OUT.xmf.<pid>.<k>.partial with the smallest k >= 1 for which both are free. A taken name
+   !> is left alone; errmsg /= '' if none of 1000 is free or a name cannot be looked up.
+   subroutine choose_temporaries(this, errmsg)
+      class(outpath_t), intent(inout) :: this
+      character(len=:), allocatable, intent(out) :: errmsg
+      character(len=:), allocatable :: suffix, pid
+      integer, parameter :: tries = 1000
+      integer :: k
+      logical :: taken
+      pid = str(sys_getpid())
+      do k = 0, tries - 1
+         suffix = '.'//pid//'.partial'
+         if (k > 0) suffix = '.'//pid//'.'//str(k)//'.partial'
+         call name_taken(this%target//suffix, taken, errmsg)
+         if (len(errmsg) > 0) return
+         if (.not. taken .and. len(this%xmf) > 0) call name_taken(this%xmf//suffix, taken, errmsg)
+         if (len(errmsg) > 0) return
+         if (taken) cycle
+         this%partial = this%target//suffix
+         if (len(this%xmf) > 0) this%xmf_partial = this%xmf//suffix
+         return
+      end do
+      errmsg = "cannot write output '"//this%target//"': its "//str(tries)//" temporary names "// &
+               this%target//'.'//pid//'[.<k>].partial are all taken; move old .partial files away'
+   contains
+      subroutine name_taken(path, taken, msg)
+         character(len=*), intent(in) :: path
+         logical, intent(out) :: taken
+         character(len=:), allocatable, intent(out) :: msg
+         integer(c_long_long) :: dev, ino, size
+         integer :: kind, e
+         integer, parameter :: eloop = 40
+         msg = ''
+         call sys_path_info(path, kind, dev, ino, size, e)
+         ! a link loop is a name in use as well
+         taken = kind /= kind_missing .or. e == eloop
+         if (e /= 0 .and. e /= eloop) msg = "cannot write output '"//this%target//"': its temporary name '"// &
+                                            path//"': "//sys_strerror(e)
+      end subroutine name_taken
+   end subroutine choose_temporaries
+
+   !> The one line refusing a lock path: `what` names the output or sidecar it guards.
+   function lock_refusal(what, lock, err) result(msg)
+      character(len=*), intent(in) :: what, lock
+      integer, intent(in) :: err
+      character(len=:), allocatable :: msg
+      if (err < 0) then
+         ! not a lock file this program may take: it is left exactly as it is
+         msg = 'cannot lock '//what//": its lock file '"//lock//"' "//sys_strerror(err)// &
+               '; it is left as it is (never followed, truncated or removed): move it away or choose '// &
+               'another name with -o'
+      else
+         msg = 'cannot lock '//what//' ('//lock//'): '//sys_strerror(err)
+      end if
+   end function lock_refusal
 
    !> Where a finished file ends: the target, except for a run that did not reach its end (ended
    !> false: interrupted, blow-up, solver failure) replacing an existing result with --force,
@@ -269,9 +355,17 @@ contains
             stat = 2
             errmsg = "cannot move '"//this%partial//"' to '"//this%target//"': "//sys_strerror(err)// &
                      '; the complete result stays in '//this%partial
+            ! the sidecar, moved first, names the target, which is not this run's result (a file
+            ! that appeared meanwhile): taken back (without --force no sidecar was there before)
+            if (len(this%xmf) > 0 .and. .not. this%force) err = sys_remove_own(this%xmf)
          end if
       end if
-      if (stat == 0 .and. len(this%stale) > 0) err = sys_remove(this%stale)
+      ! the replaced result's old sidecar, if it still describes this output (a regular file:
+      ! sys_remove leaves a link alone)
+      if (stat == 0 .and. len(this%stale) > 0) then
+         if (sidecar_refers(this%stale) == this%target(index(this%target, '/', back=.true.) + 1:)) &
+            err = sys_remove(this%stale)
+      end if
       call release(this)
    end subroutine outpath_publish
 
@@ -313,14 +407,15 @@ contains
    end function sidecar_refers
 
    !> Give up: remove the sidecar's temporary file, the result's one unless keep_partial, and
-   !> release the lock. The target files are not touched.
+   !> release the lock. Only files this run created are removed (an earlier run's file under the
+   !> same name stays); the target files are not touched.
    subroutine outpath_abandon(this, keep_partial)
       class(outpath_t), intent(inout) :: this
       logical, intent(in) :: keep_partial
       integer :: err
       if (.not. allocated(this%partial)) return
-      if (len(this%xmf_partial) > 0) err = sys_remove(this%xmf_partial)
-      if (.not. keep_partial) err = sys_remove(this%partial)
+      if (len(this%xmf_partial) > 0) err = sys_remove_own(this%xmf_partial)
+      if (.not. keep_partial) err = sys_remove_own(this%partial)
       call release(this)
    end subroutine outpath_abandon
 end module contact2d_outpath

@@ -1,19 +1,27 @@
 !> POSIX services for output safety and interrupts (C in contact2d_sys.c, bound here):
 !> file kinds and identities, the output lock, no-clobber publish, the SIGINT/SIGTERM flag and
-!> the system's reason of the last HDF5 failure. Every routine returns 0 or an errno value;
-!> sys_strerror turns it into the system's text.
+!> the system's reason of the last HDF5 failure, and the files this process created (only those
+!> are moved into place or removed: sys_publish, sys_remove_own). Every routine returns 0, an
+!> errno value or one of the sys_e* refusals; sys_strerror turns it into words.
 module contact2d_sys
-   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long_long, c_null_char
+   use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long_long, c_null_char, c_int64_t
    implicit none
    private
    public :: sys_signals_install, sys_signal_pending, sys_strerror, sys_path_info, sys_dir_writable
    public :: sys_lock, sys_unlock, sys_publish, sys_remove, sys_h5_reason, sys_getpid, sys_exit_now, sys_write_file
+   public :: sys_lock_check, sys_remove_own, sys_h5_register, sys_h5_claim_failed
+   public :: sys_esymlink, sys_enotreg, sys_elinks, sys_enotlock, sys_enotown
    public :: kind_missing, kind_file, kind_directory, kind_device, kind_fifo, kind_socket, &
              kind_other, kind_dangling, kind_names
 
    !> What a path is (sys_path_info).
    integer, parameter :: kind_missing = 0, kind_file = 1, kind_directory = 2, kind_device = 3, &
                          kind_fifo = 4, kind_socket = 5, kind_other = 6, kind_dangling = 7
+   !> Refusals that are no errno (contact2d_sys.c, C2D_E*): the path is a symbolic link, not a
+   !> regular file, has other hard links, holds something else than a lock, was not created by
+   !> this process.
+   integer, parameter :: sys_esymlink = -1, sys_enotreg = -2, sys_elinks = -3, sys_enotlock = -4, &
+                         sys_enotown = -5
    character(len=24), parameter :: kind_names(0:7) = [character(len=24) :: 'missing', 'regular file', &
       'directory', 'device', 'FIFO', 'socket', 'special file', 'dangling symbolic link']
 
@@ -44,6 +52,22 @@ module contact2d_sys
          character(kind=c_char), intent(in) :: path(*)
          integer(c_int), intent(out) :: fd
       end function c2d_lock
+      integer(c_int) function c2d_lock_check(path) bind(C, name='c2d_lock_check')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+      end function c2d_lock_check
+      integer(c_int) function c2d_remove_own(path) bind(C, name='c2d_remove_own')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+      end function c2d_remove_own
+      integer(c_int) function c2d_h5_register(file) bind(C, name='c2d_h5_register')
+         import :: c_int, c_int64_t
+         integer(c_int64_t), value :: file
+      end function c2d_h5_register
+      integer(c_int) function c2d_h5_claim_failed(path) bind(C, name='c2d_h5_claim_failed')
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+      end function c2d_h5_claim_failed
       subroutine c2d_unlock(path, fd) bind(C, name='c2d_unlock')
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
@@ -134,28 +158,59 @@ contains
       fd = int(f)
    end function sys_lock
 
-   !> Remove the lock file and release the lock.
+   !> 0 if path may serve as a lock file (missing, or a regular file with one link holding a
+   !> process id or nothing: a stale lock), else sys_esymlink, sys_enotreg, sys_elinks,
+   !> sys_enotlock or an errno. Writes nothing.
+   integer function sys_lock_check(path) result(err)
+      character(len=*), intent(in) :: path
+      err = int(c2d_lock_check(path//c_null_char))
+   end function sys_lock_check
+
+   !> Remove path only if it is a file this process created (a missing file is no error;
+   !> anything else is left as it is and sys_enotown returned).
+   integer function sys_remove_own(path) result(err)
+      character(len=*), intent(in) :: path
+      err = int(c2d_remove_own(path//c_null_char))
+   end function sys_remove_own
+
+   !> Remember the HDF5 file just created exclusively on file id `file` as this process's own.
+   integer function sys_h5_register(file) result(err)
+      integer(c_int64_t), intent(in) :: file
+      err = int(c2d_h5_register(file))
+   end function sys_h5_register
+
+   !> After an exclusive HDF5 create of path failed: the file there is this process's own unless
+   !> the name existed (EEXIST in the HDF5 error stack). 0 if claimed, else ENOENT or EEXIST.
+   integer function sys_h5_claim_failed(path) result(err)
+      character(len=*), intent(in) :: path
+      err = int(c2d_h5_claim_failed(path//c_null_char))
+   end function sys_h5_claim_failed
+
+   !> Remove the lock file (if the path still names it) and release the lock.
    subroutine sys_unlock(path, fd)
       character(len=*), intent(in) :: path
       integer, intent(in) :: fd
       call c2d_unlock(path//c_null_char, int(fd, c_int))
    end subroutine sys_unlock
 
-   !> Move from -> to; without replace an existing `to` is an error (EEXIST), atomically.
+   !> Move from -> to; without replace an existing `to` is an error (EEXIST), atomically. `from`
+   !> must be a file this process created (else sys_enotown, nothing moved).
    integer function sys_publish(from, to, replace) result(err)
       character(len=*), intent(in) :: from, to
       logical, intent(in) :: replace
       err = int(c2d_publish(from//c_null_char, to//c_null_char, merge(1_c_int, 0_c_int, replace)))
    end function sys_publish
 
-   !> Write text as the whole content of path (created or truncated); 0 or the errno of the
-   !> first failed write, fsync or close.
+   !> Write text as the whole content of path, created (it must not exist; a link there is not
+   !> followed); 0 or the errno of the create or the first failed write, fsync or close.
    integer function sys_write_file(path, text) result(err)
       character(len=*), intent(in) :: path, text
       err = int(c2d_write_file(path//c_null_char, text, int(len(text), c_long_long)))
    end function sys_write_file
 
-   !> Remove a file (a missing file is no error).
+   !> Remove a regular file (a missing file is no error; a link or another kind of file is left
+   !> alone: sys_esymlink, sys_enotreg). Only for the old sidecar a user's --force gives up
+   !> (docs/output.md); temporary files go with sys_remove_own.
    integer function sys_remove(path) result(err)
       character(len=*), intent(in) :: path
       err = int(c2d_remove(path//c_null_char))

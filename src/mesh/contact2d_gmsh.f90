@@ -17,7 +17,7 @@ module contact2d_gmsh
    use contact2d_gmsh_config, only: gmsh_library_path
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str
-   use contact2d_sys, only: sys_path_info, kind_file, kind_missing, kind_names
+   use contact2d_sys, only: sys_path_info, sys_strerror, kind_file, kind_missing, kind_names
    use contact2d_mesh, only: mesh_t
    use contact2d_renumber, only: rcm_order, group_order
    implicit none
@@ -224,7 +224,11 @@ contains
 
       stat = 1
       call sys_path_info(path, kind, dev, ino, bytes, err)
-      if (err /= 0 .or. kind == kind_missing) then
+      if (err /= 0) then
+         ! the system's reason: a link loop (ELOOP), a name too long, a folder not searchable
+         errmsg = "mesh:file = '"//path//"': "//sys_strerror(err)
+         return
+      else if (kind == kind_missing) then
          errmsg = "mesh:file = '"//path//"': no such file"
          return
       else if (kind /= kind_file) then

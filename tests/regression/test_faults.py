@@ -7,7 +7,13 @@
   engine, a blow-up): the result and its sidecar are byte for byte intact, the run's complete file
   is kept as OUT.h5.<pid>.partial with its status, named on the one stderr line.
 - kill -9 of a --force run over an existing result: the result is byte for byte intact, the
-  killed run's OUT.h5.<pid>.partial is there and opens (what was flushed is readable).
+  killed run's OUT.h5.<pid>.partial is there and opens (what was flushed is readable); a later
+  run takes over the stale lock and leaves only that partial file.
+- PID reuse (a PID namespace, where the solver is PID 1 in every run): a later run takes another
+  temporary name and leaves the earlier run's OUT.h5.1.partial and sidecar byte for byte; a link
+  planted under the sidecar's temporary name is not followed.
+- A file that appears under the output's name while a run writes (no --force): exit 2, one line,
+  the run's complete file kept under its temporary name, the other file and no sidecar for it.
 - Two runs on one output: while one writes, a second --force run is refused with one line and
   writes nothing; two runs started together leave one valid result.
 - A write that fails (file size limit RLIMIT_FSIZE, the kernel's EFBIG, and a full tmpfs where
@@ -210,6 +216,10 @@ def disk_full_sweep(t):
                     if now != good:
                         t.check(where, "the old result and sidecar unchanged", False, True, True)
                     partial = os.path.join(mnt, "out.h5.%d.partial" % proc.pid)
+                    if err and "creating the file" in err[0] and os.path.exists(partial):
+                        # docs/output.md: an output that cannot even be created leaves no file
+                        t.check(where, "an output that could not be created leaves no file", False, "no file",
+                                "%s (%d bytes)" % (os.path.basename(partial), os.path.getsize(partial)))
                     if os.path.exists(partial):
                         try:
                             with h5py.File(partial, "r") as f:
@@ -233,6 +243,106 @@ def disk_full_sweep(t):
                 os.remove(os.path.join(mnt, n))
     finally:
         subprocess.run(["umount", mnt])
+
+
+NAMESPACE = ["unshare", "--pid", "--fork", "--mount-proc", "--kill-child"]
+
+
+def pid_reuse(t):
+    """PID reuse: in a PID namespace (a container) the solver is PID 1 in every run, so a run's
+    temporary name OUT.h5.1.partial is an earlier run's. A run killed by SIGKILL leaves
+    out.h5.1.partial (with, planted here, an earlier sidecar out.xmf.1.partial); the next run
+    in a namespace must take another temporary name, succeed, and leave both files byte for
+    byte (it did not create them, so it never removes them). A symbolic link planted under the
+    sidecar's temporary name is never followed (the user's file it points to keeps its bytes)."""
+    probe = subprocess.run(NAMESPACE + ["true"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    if probe.returncode != 0:
+        print("SKIP pid_reuse: cannot make a PID namespace here (%s)" % probe.stdout.decode("utf-8", "replace").strip())
+        return
+
+    def in_namespace(folder, deck, args):
+        cmd = NAMESPACE + [t.exe, deck, "-o", "out.h5", "-q"] + list(args)
+        print("-- start (cd %s && %s)" % (folder, " ".join(cmd)))
+        return subprocess.Popen(cmd, cwd=folder, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env=ENV,
+                                start_new_session=True)
+
+    name = "pid_reuse"
+    folder = t.subdir(name)
+    first = in_namespace(folder, t.deck(LONG), LONG_ARGS)
+    partial = wait_for(os.path.join(folder, "out.h5.1.partial"))
+    t.require(partial is not None, name + ": the first run (PID 1 in its namespace) writes out.h5.1.partial")
+    time.sleep(1.0)
+    os.killpg(first.pid, signal.SIGKILL)   # the solver and unshare: kill -9, nothing cleans up
+    first.communicate()
+    with open(os.path.join(folder, "out.xmf.1.partial"), "w") as fh:
+        fh.write("<Xdmf>an earlier run's sidecar</Xdmf>\n")
+    kept = {n: sha(os.path.join(folder, n)) for n in ("out.h5.1.partial", "out.xmf.1.partial")}
+    rc, err, _ = finish(in_namespace(folder, t.deck(UNIAXIAL), []))
+    t.check_equal(name, "the second run (PID 1 again) exit code", 0, rc)
+    t.check_equal(name, "stderr lines", 0, len(err))
+    for n in kept:
+        t.check_equal(name, "the earlier run's %s unchanged (sha256)" % n, kept[n],
+                      sha(os.path.join(folder, n)) if os.path.exists(os.path.join(folder, n)) else "missing")
+    if os.path.exists(os.path.join(folder, "out.h5")):
+        with h5py.File(os.path.join(folder, "out.h5"), "r") as f:
+            t.check_equal(name, "the second run's result in place", "converged", c2dtest.attr_str(f.attrs["status"]))
+    else:
+        t.check(name, "the second run's result in place", False, "out.h5", "missing")
+    t.check_equal(name, "left beside the result: the earlier files only (no lock, no temporary of its own)",
+                  sorted(kept), leftovers(folder))
+
+    name = "pid_reuse_sidecar_link"
+    folder = t.subdir(name)
+    with open(os.path.join(folder, "precious.txt"), "w") as fh:
+        fh.write("the user's data\n")
+    before = sha(os.path.join(folder, "precious.txt"))
+    os.symlink("precious.txt", os.path.join(folder, "out.xmf.1.partial"))
+    rc, err, _ = finish(in_namespace(folder, t.deck(UNIAXIAL), []))
+    t.check_equal(name, "exit code", 0, rc)
+    t.check_equal(name, "precious.txt behind the planted link unchanged (sha256)", before,
+                  sha(os.path.join(folder, "precious.txt")))
+    t.check_equal(name, "the planted link left as it is", "precious.txt",
+                  os.readlink(os.path.join(folder, "out.xmf.1.partial"))
+                  if os.path.islink(os.path.join(folder, "out.xmf.1.partial")) else "not a link")
+    t.check_equal(name, "out.xmf is the run's own regular file", True,
+                  os.path.isfile(os.path.join(folder, "out.xmf")) and not os.path.islink(os.path.join(folder, "out.xmf")))
+    t.check_equal(name, "left beside the result: the planted link only", ["out.xmf.1.partial"], leftovers(folder))
+
+
+def publish_refused(t):
+    """A file named like the output appears while a run writes (another program, a user; no
+    --force): the run's move into place, which never replaces a file, fails. The run exits 2 with
+    one line naming its temporary file; that file is kept, complete (the line says "the complete
+    result stays in" it), the other file keeps its bytes, and the sidecar moved just before is
+    taken back (it would describe the other file). Explicit and static engines."""
+    for engine, args in (("explicit", ["--set", "mesh:level=2", "--set", "solver:tol_residual=1e-300",
+                                       "--set", "solver:t_end=1.0", "--set", "solver:max_steps=200000"]),
+                         ("static", ["--static", "--set", "mesh:level=2", "--set", "solver:static_increments=20000"])):
+        name = "publish_refused_" + engine
+        folder = t.subdir(name)
+        proc = start(t, folder, t.deck(LONG), args)
+        partial = wait_for(os.path.join(folder, "out.h5.%d.partial" % proc.pid))
+        t.require(partial is not None, name + ": the run writes its partial file")
+        with open(os.path.join(folder, "out.h5"), "w") as fh:
+            fh.write("another program's file\n")
+        theirs = sha(os.path.join(folder, "out.h5"))
+        rc, err, _ = finish(proc)
+        t.require(proc.poll() is not None, name + ": the run ended")
+        t.check_equal(name, "exit code", 2, rc)
+        t.check(name, "one line: File exists, the result stays in the partial file",
+                len(err) == 1 and "File exists" in err[0] and "stays in " + os.path.basename(partial) in err[0],
+                "one line '... File exists; the complete result stays in %s'" % os.path.basename(partial), err)
+        t.check_equal(name, "the other out.h5 unchanged (sha256)", theirs, sha(os.path.join(folder, "out.h5")))
+        t.check_equal(name, "no sidecar out.xmf describing the other file", False,
+                      os.path.lexists(os.path.join(folder, "out.xmf")))
+        t.check_equal(name, "left: the named partial file only (no lock)", [os.path.basename(partial)],
+                      leftovers(folder))
+        if os.path.exists(partial):
+            with h5py.File(partial, "r") as f:
+                t.check(name, "the kept file is complete (status set, /final/displacement finite)",
+                        c2dtest.attr_str(f.attrs["status"]) != "running" and
+                        np.isfinite(f["final/displacement"][:]).all(), "complete",
+                        c2dtest.attr_str(f.attrs["status"]))
 
 
 def body(t):
@@ -280,6 +390,11 @@ def body(t):
     # a later run to the same output is not blocked by the dead run (its flock died with it)
     rc, err, _ = finish(start(t, folder, quick[0], ["--force"]))
     t.check_equal(name, "a later --force run succeeds", 0, rc)
+    # the killed run's stale lock (its process id) was taken over and removed; its partial kept
+    t.check_equal(name, "after the later run: only the killed run's partial file left",
+                  [os.path.basename(partial)], leftovers(folder))
+    pid_reuse(t)
+    publish_refused(t)
 
     # ---- --force onto a result another process holds open ------------------------------------
     name = "force_while_open"
@@ -354,6 +469,20 @@ def body(t):
     t.check_equal(name, "--force with xdmf off beside a FIFO named like the sidecar: exit code", 0, rc)
     t.check_equal(name, "the FIFO left alone", True, os.path.exists(os.path.join(folder, "same.xmf")))
     os.remove(os.path.join(folder, "same.xmf"))
+    # a symbolic link named like the old sidecar (to the user's own sidecar of same.h5, kept
+    # elsewhere) is the user's: the run removes only a regular sidecar file, never a link
+    os.mkdir(os.path.join(folder, "mine"))
+    with open(os.path.join(folder, "mine", "same.xmf"), "w") as fh:
+        fh.write('<DataItem Dimensions="1" Format="HDF">same.h5:/mesh/coordinates</DataItem>\n')
+    mine = sha(os.path.join(folder, "mine", "same.xmf"))
+    os.symlink(os.path.join("mine", "same.xmf"), os.path.join(folder, "same.xmf"))
+    rc, err, _ = finish(start(t, folder, quick[0], ["--force", "--set", "output:xdmf=.false."], out="same.h5"))
+    t.check_equal(name, "--force with xdmf off beside a link named like the sidecar: exit code", 0, rc)
+    t.check_equal(name, "the link same.xmf left alone", os.path.join("mine", "same.xmf"),
+                  os.readlink(os.path.join(folder, "same.xmf")) if os.path.islink(os.path.join(folder, "same.xmf"))
+                  else "removed")
+    t.check_equal(name, "the file it points to unchanged (sha256)", mine, sha(os.path.join(folder, "mine", "same.xmf")))
+    t.check_equal(name, "no temporary or lock file left", [], leftovers(folder))
 
     # ---- a write that fails: file size limit (EFBIG) ----------------------------------------
     name = "write_fails"

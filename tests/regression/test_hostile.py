@@ -4,8 +4,11 @@ and leaves the run's folder exactly as it was (same names, kinds, sizes, content
 targets): nothing created, nothing modified, not even a lock or temporary file.
 
 Classes: output names (the deck itself and its Gmsh mesh file, also through hard and symbolic links; the sidecar;
-directories, devices, FIFOs, dangling links, missing or non-folder parents, names too long,
-existing files and sidecars), deck files (directory, device, FIFO, oversized, missing), deck text
+directories, devices, FIFOs, dangling links, link loops, missing or non-folder parents, names too long,
+existing files and sidecars), lock files planted beside the output (a symbolic link to the user's
+file, dangling or looping, a hard link, a file with other content, a FIFO, a directory: refused,
+left as they are, the link's target untouched), deck files (directory, device, FIFO, oversized,
+missing, link loop), the deck's Gmsh mesh file a link loop, deck text
 (over-long lines, over-long string values, '&end', a group opened inside another, over-long
 --set), every real NaN / Inf / out of range (via --set, so each variable is named), and a mesh
 that does not fit in the memory the process may use (RLIMIT_AS).
@@ -74,6 +77,39 @@ def gmsh_deck(t, folder):
     """The shipped Hertz cylinder deck and its geometry (mesh:file = 'hertz_cylinder.geo') as deck.nml."""
     shutil.copy(t.deck("hertz_cylinder_p1.nml"), os.path.join(folder, "deck.nml"))
     shutil.copy(t.deck("hertz_cylinder.geo"), os.path.join(folder, "hertz_cylinder.geo"))
+
+
+def plant_link(name, target):
+    """prepare(): a symbolic link `name` -> `target` in the case's folder."""
+    return lambda f: os.symlink(target, os.path.join(f, name))
+
+
+def plant_precious(how, name):
+    """prepare(): the user's precious.txt, and under the lock name `name` a symbolic link to it
+    (how = 'symlink') or a second hard link (how = 'hardlink')."""
+    def make(f):
+        write(f, "precious.txt", "the user's data\n")
+        if how == "symlink":
+            os.symlink("precious.txt", os.path.join(f, name))
+        else:
+            os.link(os.path.join(f, "precious.txt"), os.path.join(f, name))
+    return make
+
+
+def loop(a, b):
+    """prepare(): a symbolic link loop a -> b -> a (stat gives ELOOP)."""
+    def make(f):
+        os.symlink(b, os.path.join(f, a))
+        os.symlink(a, os.path.join(f, b))
+    return make
+
+
+def gmsh_loop_deck(t, folder):
+    """The shipped Hertz cylinder deck with mesh:file = 'l.geo', a link loop made by prepare()."""
+    with open(t.deck("hertz_cylinder_p1.nml")) as fh:
+        text = fh.read()
+    assert "'hertz_cylinder.geo'" in text
+    write(folder, "deck.nml", text.replace("'hertz_cylinder.geo'", "'l.geo'", 1))
 
 
 def nan_cases():
@@ -171,6 +207,26 @@ def cases():
          r"(File name too long|No such file)", {}),
         ("out_fifo", "u", ["-o", "f.h5", "--force"], lambda f: os.mkfifo(os.path.join(f, "f.h5")), r"'f\.h5' is a FIFO", {}),
         ("out_exists", "u", [], lambda f: write(f, "out.h5", "pre-existing\n"), r"'out\.h5' exists.*--force", {}),
+        ("out_symlink_loop", "u", ["-o", "l.h5"], loop("l.h5", "m.h5"),
+         r"'l\.h5': Too many levels of symbolic links", {}),
+        # ---- lock files: created without following links; a planted link or another file is
+        # refused and left as it is (its target untouched); a stale lock is taken over (test_faults)
+        ("lock_symlink", "u", [], plant_precious("symlink", ".out.h5.lock"),
+         r"output 'out\.h5': its lock file '\.out\.h5\.lock' is a symbolic link", {}),
+        ("xlock_symlink", "u", [], plant_precious("symlink", ".out.xmf.lock"),
+         r"sidecar 'out\.xmf': its lock file '\.out\.xmf\.lock' is a symbolic link", {}),
+        ("lock_dangling_symlink", "u", [], plant_link(".out.h5.lock", "made_by_the_run"),
+         r"lock file '\.out\.h5\.lock' is a symbolic link", {}),
+        ("lock_symlink_loop", "u", [], loop(".out.h5.lock", ".other.lock"),
+         r"lock file '\.out\.h5\.lock' is a symbolic link", {}),
+        ("lock_hard_link", "u", [], plant_precious("hardlink", ".out.h5.lock"),
+         r"lock file '\.out\.h5\.lock' has other hard links", {}),
+        ("lock_holds_text", "u", [], lambda f: write(f, ".out.h5.lock", "my notes\n"),
+         r"lock file '\.out\.h5\.lock' holds something else than a lock", {}),
+        ("lock_fifo", "u", [], lambda f: os.mkfifo(os.path.join(f, ".out.h5.lock")),
+         r"lock file '\.out\.h5\.lock' is not a regular file", {}),
+        ("lock_directory", "u", [], lambda f: os.mkdir(os.path.join(f, ".out.h5.lock")),
+         r"lock file '\.out\.h5\.lock' is not a regular file", {}),
         ("out_empty_name", "u", ["-o", ""], None, r"output file name is empty", {}),
         # ---- deck files ----
         ("deck_directory", None, [], lambda f: os.mkdir(os.path.join(f, "d.nml")), r"'d\.nml' is a directory",
@@ -182,6 +238,11 @@ def cases():
         ("deck_missing", None, [], None, r"missing\.nml.*no such file", {"deck": "missing.nml"}),
         ("deck_dangling_link", None, [], lambda f: os.symlink("gone.nml", os.path.join(f, "l.nml")),
          r"'l\.nml'.*dangling", {"deck": "l.nml"}),
+        ("deck_symlink_loop", None, [], loop("l.nml", "m.nml"), r"'l\.nml': Too many levels of symbolic links",
+         {"deck": "l.nml"}),
+        # the deck's Gmsh mesh:file a link loop: the system's reason, not "no such file"
+        ("mesh_symlink_loop", gmsh_loop_deck, [], loop("l.geo", "m.geo"),
+         r"mesh:file = 'l\.geo': Too many levels of symbolic links", {}),
         # ---- deck text ----
         ("line_1100_blanks", edit("u", "lx = 1.0, ly = 0.5, nx = 8, ny = 4", "lx = 1.0, ly = 0.5, nx = 8, ny = 4," +
                                   " " * 1100 + "level = 3"), [], None, r"deck\.nml:9: line has \d+ characters", {}),
