@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Coulomb friction: end state against ramp duration and loading path, and large mu (issue 11).
+"""Coulomb friction: end state against ramp duration and loading path, and large mu.
 
     /usr/bin/python3 postproc/coulomb_path_study.py [--exe build/bin/contact2d] [--out study/coulomb]
                      [--level 1] [--factors 1,2,4,8,16,32] [--reuse] [--force]

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Geometry verification study (issue 10): Hertz and Lame across Gmsh refinement levels.
+"""Geometry verification study: Hertz and Lame across Gmsh refinement levels.
 
     /usr/bin/python3 postproc/hertz_study.py [--levels 0-2] [--lame-levels 0-4] [--out study/geometry]
                                              [--reuse] [--update-docs] [--force]

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Impact on the rigid plane against the exact 1D wave solution (issue 12, docs/impact.md).
+"""Impact on the rigid plane against the exact 1D wave solution (docs/impact.md).
 
     /usr/bin/python3 postproc/impact_study.py [--out study/impact] [--levels 2 3 4 5]
                                               [--figures DIR] [--rerun] [--exe PATH] [--force]

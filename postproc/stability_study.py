@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Where methods fail (issue 6): penalty against multipliers, inf-sup loss, friction path, friction
+"""Where methods fail: penalty against multipliers, inf-sup loss, friction path, friction
 only in contact, long undamped runs. The dt sweep is postproc/stability_sweep.py.
 
     /usr/bin/python3 postproc/stability_study.py all [--out study/stability] [--force]

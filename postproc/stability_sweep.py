@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""Stability sweep: where does each method stop being stable? (issue 6)
+"""Stability sweep: where does each method stop being stable?
 
 Runs the paper scene (SPEC section 7) undamped over a fixed simulated time for dt/dt_critical
 from 0.5 to 1.4, for the elastic body (no contact), P1 and P0 contact, frictionless, Tresca and
-Coulomb (mu = 0.3, issue 11), and the penalty method, and records whether each run stays bounded: exit status (the blow-up
+Coulomb (mu = 0.3), and the penalty method, and records whether each run stays bounded: exit status (the blow-up
 guard stops a run whose kinetic energy exceeds 1000 x the work put in), the largest kinetic
 energy over the largest external work, and max |u|. Writes stability.csv and stability.png in
 --out; those already there are refused before any run (one line, exit 2) unless --force, and each is

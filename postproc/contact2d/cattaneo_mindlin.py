@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """Hertz line contact and Cattaneo-Mindlin partial slip: the closed forms the mindlin_cylinder
-scene (issue 11, waiting for the curved geometry of issue 10) will be compared with.
+scene is compared with.
 
     from contact2d.cattaneo_mindlin import hertz, stick_half_width, shear
     a, p0 = hertz(P, R, E, nu)            # elastic cylinder (plane strain) on a rigid flat

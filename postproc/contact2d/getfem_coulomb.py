@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""GetFEM quasi-static Coulomb reference for a contact2d run (P1 multipliers), issue 11.
+"""GetFEM quasi-static Coulomb reference for a contact2d run (P1 multipliers).
 
     postproc/getfem_coulomb.py IN.h5 -o REF.h5 [--force] [--increments 20] [--tol 1e-12] [--side NAME=SIDE ...]
                                [--from-snapshot TIME]

@@ -1,4 +1,4 @@
-"""Measures of an impact_bar run against the exact 1D wave solution (issue 12, docs/impact.md).
+"""Measures of an impact_bar run against the exact 1D wave solution (docs/impact.md).
 
     from contact2d import Run
     from contact2d.impact import exact, measure

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Cattaneo-Mindlin measures of a contact2d run of inputs/mindlin_cylinder_*.nml (issue 11).
+"""Cattaneo-Mindlin measures of a contact2d run of inputs/mindlin_cylinder_*.nml.
 
     postproc/mindlin.py RUN.h5 [RUN2.h5 ...] [--figure docs/figures/mindlin_shear.png [--pressed PRESSED.h5]]
     from contact2d.mindlin import measure;  m = measure("mindlin_cylinder_p1.h5")

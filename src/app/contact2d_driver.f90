@@ -168,7 +168,7 @@ contains
             omega2_power = model%stiff%power_omega2(model%load%free, deck%solver%power_iterations)
          end if
       end if
-      ! solver:dt_limit = 'power' (issue 13): dt from the power-iteration estimate of the true
+      ! solver:dt_limit = 'power': dt from the power-iteration estimate of the true
       ! limit, with the growing-mode guard; never below the element-bound step
       if (deck%solver%dt_limit == 'power' .and. deck%solver%dt == 0 .and. omega2_power > 0) then
          model%dt = max(model%dt, deck%solver%dt_factor*2/sqrt(omega2_power))
@@ -210,7 +210,7 @@ contains
          call out%file%attr(out%file%id, 'omega_max_power', sqrt(omega2_power))
          call out%file%attr(out%file%id, 'dt_stable_estimate', 2/sqrt(omega2_power))
       end if
-      ! issue 12: the kind of run and the energy put in at t = 0 (docs/output.md)
+      ! the kind of run and the energy put in at t = 0 (docs/output.md)
       call out%file%attr(out%file%id, 'dynamic', merge(1, 0, deck%dynamic))
       call out%file%attr(out%file%id, 'convergence_test', merge(1, 0, deck%convergence_test))
       call out%file%attr(out%file%id, 'initial_kinetic_energy', solver%initial_kinetic)
@@ -318,7 +318,7 @@ contains
       timings(2) = real(t_steps, wp)/rate
       timings(3) = real(model%contact%clock_ticks, wp)/rate
       timings(4) = real(t_output, wp)/rate
-      ! solver:compare_static: energy distance of the end state to the static solution (issue 14)
+      ! solver:compare_static: energy distance of the end state to the static solution
       if (deck%solver%compare_static) then
          call static_distance(deck, model, solver%u, static_dist, static_converged, stat, errmsg)
          if (stat /= 0) then

@@ -29,7 +29,7 @@ module contact2d_model
       real(wp) :: dt = 0             !< time step [s]
       real(wp) :: dt_critical = 0    !< 2/omega_max from the element bound [s]
       integer :: damping = damping_auto
-      ! mass scaling (solver:mass_scaling > 0, issue 13)
+      ! mass scaling (solver:mass_scaling > 0)
       real(wp) :: added_mass = 0     !< total fictitious mass [t]
       real(wp) :: body_mass = 0      !< physical mass of the body [t]
       integer :: scaled_nodes = 0    !< nodes that got mass
@@ -109,7 +109,7 @@ contains
       model%dt_critical = max(model%dt_critical, dt_scaled)
       if (model%contact%penalty) then
          ! penalty springs k_p w_i at the contact nodes stiffen them: the nodal bound
-         ! dt <= 2 / sqrt(omega_max^2 + k_p w_i / m_i) (issue 6); omega_max^2 and m_i of the
+         ! dt <= 2 / sqrt(omega_max^2 + k_p w_i / m_i); omega_max^2 and m_i of the
          ! scaled system when mass scaling gives the larger step
          omega2 = model%stiff%omega2_element
          if (dt_scaled > model%stiff%dt_critical()) omega2 = (2/dt_scaled)**2
@@ -196,7 +196,7 @@ contains
             call model%contact%init(cfg, nodes, model%mesh%x, model%load%free, model%stiff%mass, &
                                     model%warnings, stat, errmsg)
             ! a plane whose normal nu (from the obstacle into the body) points along the built-in
-            ! edge's outward normal: no node can ever touch, warn (issue 9)
+            ! edge's outward normal: no node can ever touch, warn
             if (stat == 0 .and. len_trim(c%boundary) == 0 .and. c%obstacle == 'plane') then
                if (dot_product(c%obstacle_normal, outward(:, edge_id(c%edge))) > 0) then
                   call model%warnings%add('contact:obstacle_normal = ('//str(c%obstacle_normal(1))//', '// &

@@ -7,7 +7,7 @@
 !> many times as needed. Each group is read from its own block with iostat/iomsg; a failure
 !> names the deck line of the group and the runtime's message.
 !>
-!> Nothing is misread (issue 9): lines are read whole and refused beyond line_len, '&end' and
+!> Nothing is misread: lines are read whole and refused beyond line_len, '&end' and
 !> nested groups are refused, a variable given twice in one group is refused, only regular files
 !> up to max_deck_bytes are read. To add a
 !> variable: a string is read into a local of length line_len and checked with too_long()
@@ -157,21 +157,21 @@ module contact2d_deck
       integer :: check_interval = 10      !< steps between convergence checks
       integer :: power_iterations = 100   !< power iterations for the true omega_max (0: skip)
       !> 'element': dt from the element bound; 'power': from the power-iteration estimate of the
-      !> true limit, with a growing-mode guard falling back to the element bound (issue 13)
+      !> true limit, with a growing-mode guard falling back to the element bound
       character(len=8) :: dt_limit = 'element'
-      real(wp) :: mass_scaling = 0        !< target stable step [s] of mass scaling; 0: off (issue 13)
-      character(len=8) :: method = 'explicit'  !< 'explicit' | 'static' (docs/static.md, issue 14)
+      real(wp) :: mass_scaling = 0        !< target stable step [s] of mass scaling; 0: off
+      character(len=8) :: method = 'explicit'  !< 'explicit' | 'static' (docs/static.md)
       integer :: static_increments = 1    !< static load increments along the load curves, >= 1
       !> static: active-set iterations of one solve before an increment counts as not settled
       integer :: static_iterations = 200
       !> static: halvings of an increment that does not settle (up to 2^static_splits parts)
       integer :: static_splits = 6
       logical :: compare_static = .false. !< explicit run: report the energy distance to the static solution
-      !> 'auto' | 'on' | 'off': stop at convergence; 'auto' is off for dynamic runs (issue 12)
+      !> 'auto' | 'on' | 'off': stop at convergence; 'auto' is off for dynamic runs
       character(len=8) :: convergence_test = 'auto'
    end type solver_cfg_t
 
-   !> &initial: the state at t = 0 (issue 12, docs/deck.md).
+   !> &initial: the state at t = 0 (docs/deck.md).
    type :: initial_cfg_t
       real(wp) :: velocity(2) = [0.0_wp, 0.0_wp]   !< uniform initial velocity (vx, vy) [mm/s]
    end type initial_cfg_t
@@ -206,7 +206,7 @@ module contact2d_deck
       type(solver_cfg_t) :: solver
       type(output_cfg_t) :: output
       type(initial_cfg_t) :: initial
-      !> derived: a dynamic run (non-zero initial velocity and damping = 'none', issue 12)
+      !> derived: a dynamic run (non-zero initial velocity and damping = 'none')
       logical :: dynamic = .false.
       !> derived: the run stops at convergence (solver:convergence_test resolved)
       logical :: convergence_test = .true.
@@ -1285,7 +1285,7 @@ contains
       cfg%static_iterations = static_iterations; cfg%static_splits = static_splits
    end subroutine read_solver
 
-   !> &initial (issue 12): the uniform initial velocity.
+   !> &initial: the uniform initial velocity.
    subroutine read_initial(blk, ovr, where, cfg, stat, errmsg)
       character(len=line_len), intent(in) :: blk(:)
       type(override_t), intent(in) :: ovr(:)
@@ -1506,7 +1506,7 @@ contains
          end if
       end associate
 
-      ! &initial (issue 12): a finite velocity; with damping = 'none' a non-zero one makes the
+      ! &initial: a finite velocity; with damping = 'none' a non-zero one makes the
       ! run dynamic (no convergence test unless solver:convergence_test = 'on'; t_end bounds it)
       do i = 1, 2
          if (.not. ieee_is_finite(deck%initial%velocity(i))) then
@@ -1530,14 +1530,14 @@ contains
          errmsg = "solver:t_end is required for a dynamic run (initial:velocity /= 0 with damping = 'none')"
          return
       end if
-      ! the static engine solves for equilibrium: an initial velocity has no meaning there (issue 14)
+      ! the static engine solves for equilibrium: an initial velocity has no meaning there
       if (any(deck%initial%velocity /= 0) .and. &
           (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
          errmsg = "initial:velocity = "//str(deck%initial%velocity(1))//", "//str(deck%initial%velocity(2))// &
                   " has no meaning for the static engine (solver:method = 'static' or compare_static)"
          return
       end if
-      ! mass scaling changes the dynamics: refused with an initial velocity (issue 13; the
+      ! mass scaling changes the dynamics: refused with an initial velocity (the
       ! damping check above refuses damping = 'none' and 'given')
       if (any(deck%initial%velocity /= 0) .and. deck%solver%mass_scaling > 0) then
          errmsg = "solver:mass_scaling = "//str(deck%solver%mass_scaling)//" is refused with initial:velocity = "// &

@@ -1,7 +1,7 @@
 /* Counts heap allocations of the test process: the executable's malloc/calloc/realloc
  * interpose glibc's (they forward to __libc_*), so every allocation made by Fortran code,
  * libgfortran or LAPACK is seen. Used by test_step_no_alloc.pf to keep the step loop free of
- * heap allocation (STYLE.md, issue 9). glibc only. */
+ * heap allocation (STYLE.md). glibc only. */
 #include <stddef.h>
 extern void *__libc_malloc(size_t);
 extern void *__libc_calloc(size_t, size_t);

@@ -2,8 +2,9 @@
 """The docs as a manual: checks that fail when
 
 - a page (docs/*.md, README.md) is over 40 000 bytes: a manual page a user reads, not a log;
-- docs (docs/*.md, README.md) or src/ cite "issue N" (case-insensitive 'issue [0-9]+'): say
-  what and why, cite SPEC §N or a paper; the history of a figure belongs in git;
+- docs (docs/*.md, README.md) or code (src/, tests/, postproc/, inputs/, cmake/, .ci/,
+  CMakeLists.txt) cite "issue N" (case-insensitive 'issue [0-9]+'): say what and why, cite SPEC §N
+  or a paper; the history of a figure belongs in git;
 - a relative link or image in docs/*.md or README.md points to a file that does not exist
   (links with a scheme, such as https:, and links to an anchor of the same page are not checked;
   text in code blocks and code spans is not a link).
@@ -75,7 +76,11 @@ def check(root):
             if not resolved.exists():
                 findings.append(f"{page.relative_to(root)}:{n}: link to {target}: no such file")
     cited = [p for p in pages(root) if p.is_file()]
-    cited += sorted(p for p in (root / "src").rglob("*") if p.is_file())
+    for folder in ("src", "tests", "postproc", "inputs", "cmake", ".ci"):
+        cited += sorted(p for p in (root / folder).rglob("*")
+                        if p.is_file() and "__pycache__" not in p.parts)
+    if (root / "CMakeLists.txt").is_file():
+        cited.append(root / "CMakeLists.txt")
     for path in cited:
         try:
             text = path.read_text(encoding="utf-8")
@@ -95,7 +100,7 @@ def main():
     if findings:
         print(f"check_docs: {len(findings)} finding(s)")
         return 1
-    print(f"check_docs: {len(pages(root))} pages and src/ clean")
+    print(f"check_docs: {len(pages(root))} pages and the code clean")
     return 0
 
 

@@ -5,7 +5,7 @@
 Runs the deck, reads <out>.xmf with ParaView's XDMF reader and checks: the numbers of points and
 quadrilaterals the program reported on its 'mesh from <file>: N Q1 elements, M nodes' line, a
 3-component displacement with a non-zero range, the element stress array, and that Warp By
-Vector moves the bounds (all on the sidecar's `final` block, xdmf_blocks.py). (Issue 10; the structured-mesh check is check_xdmf_paraview.py.)
+Vector moves the bounds (all on the sidecar's `final` block, xdmf_blocks.py). (the structured-mesh check is check_xdmf_paraview.py.)
 Not run where ParaView is not installed.
 """
 import os

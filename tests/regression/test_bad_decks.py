@@ -129,7 +129,7 @@ CASES = [
      r"file = 'm{300}\.msh' is longer than 256 characters"),
     ("origin_one_component", "bad_decks/origin_one_component.nml", [],
      r"contact:origin = 0\.25 has one component"),
-    # issue 12: &initial and dynamic runs
+    # &initial and dynamic runs
     ("initial_velocity_nan", "inputs/impact_bar_p1.nml", ["--set", "initial:velocity=NaN,-1000"],
      r"initial:velocity\(1\) = .*must be finite"),
     # the 'not given' marker +-huge(1.0) typed by the user is out of range like any other value
@@ -189,7 +189,7 @@ def deck_path(t, deck):
 
 
 def body(t):
-    t.check_ge("bad_decks", "number of cases", len(CASES), 14, reason="issue 2 asks >= 10, the brief >= 14")
+    t.check_ge("bad_decks", "number of cases", len(CASES), 14, reason="every class of bad input the deck reference names, at least 14")
     for name, deck, extra, pattern in CASES:
         print()
         print("## case %s" % name)

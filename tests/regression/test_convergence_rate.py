@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Convergence of the paper scene (issue 4): postproc/paper_study.py at levels 0..4 (reference 4).
+"""Convergence of the paper scene: postproc/paper_study.py at levels 0..4 (reference 4).
 
 - The unbiased energy-norm rate (least squares over the three finest successive differences)
   is >= 0.45 for P1 and for P0: the scene's mixed-condition corners limit the H^2 rate 3/4 of
@@ -29,7 +29,7 @@ def body(t):
         r = [x for x in rates if x["multiplier"] == m and x["measure"] == "energy"
              and x["way"] == "successive differences" and x["levels"] == "three finest"][0]
         t.check_ge(os.path.join(out, "rates.csv"), "%s energy-norm rate, successive differences, 3 finest" % m,
-                   float(r["rate"]), 0.45, reason="issue 4 acceptance; corners predict about 1/2")
+                   float(r["rate"]), 0.45, reason="the corners of the contact zone predict about 1/2")
     with open(os.path.join(out, "p1_sign.csv")) as fh:
         sign = list(csv.DictReader(fh))
     p0_min = min(float(x["min_pressure"]) for x in sign if x["multiplier"] == "P0")

@@ -8,7 +8,7 @@ effective.nml, run that with no overrides, and check that
   every real must be echoed with enough digits to round-trip exactly);
 - dt, steps and the status are identical too.
 Cases cover no contact, contact with multi-stage loads and snapshots, P0 with coordinate
-ranges on the Dirichlet groups, and a dynamic run with an initial velocity (issue 12).
+ranges on the Dirichlet groups, and a dynamic run with an initial velocity.
 """
 import numpy as np
 
@@ -27,7 +27,7 @@ CASES = [
     ("baillet_p0", "baillet_sassi_2002_p0.nml",
      ["--set", "mesh:level=1", "--set", "dirichlet#3:values=-1.2345678901234567e-3"],
      [("mesh", 0, "level", 1), ("dirichlet", 3, "values", [-1.2345678901234567e-3])]),
-    # issue 12: &initial and a dynamic run (no convergence test, ends at t_end)
+    # &initial and a dynamic run (no convergence test, ends at t_end)
     ("impact_p1", "impact_bar_p1.nml",
      ["--set", "initial:velocity=0,-987.65432109876543", "--set", "output:history_interval=7"],
      [("initial", 0, "velocity", [0.0, -987.65432109876543]), ("solver", 0, "convergence_test", "auto")]),

@@ -1,4 +1,4 @@
-"""Regression 15 (issue 9): faults end cleanly and never lose data.
+"""Regression 15: faults end cleanly and never lose data.
 
 - SIGINT / SIGTERM mid-run: exit 130 / 143, one line on stderr, OUT.h5 in place with status
   'interrupted', the history up to the stop, /final and the sidecar; no temporary file or lock left.

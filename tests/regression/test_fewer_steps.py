@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fewer steps, same end state (issue 13): true-limit dt, a ramp of one lowest period, mass scaling.
+"""Fewer steps, same end state: true-limit dt, a ramp of one lowest period, mass scaling.
 
 The paper scene (P1 and P0, Tresca) at level 2 is run four ways: the default deck; with
 solver:dt_limit = 'power' (dt from the power-iteration estimate of the true stability limit,
@@ -93,7 +93,7 @@ def body(t):
     t.expect_exit(r, 1)
     t.check(r, "nothing written (refused, no damping)", not os.path.exists(r.h5), "no out.h5",
             "present" if os.path.exists(r.h5) else "no out.h5")
-    # ... and with an initial velocity (issue 12's &initial), even with automatic damping
+    # ... and with an initial velocity (&initial), even with automatic damping
     r = t.run(t.deck("impact_bar_p1.nml"), "--set", "solver:damping='auto'", "--set", "solver:mass_scaling=1e-8",
               name="refused_velocity")
     t.expect_exit(r, 1)

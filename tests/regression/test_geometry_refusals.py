@@ -1,4 +1,4 @@
-"""Regression: refused geometry input (issue 10) gives one line, exit 1, nothing written.
+"""Regression: refused geometry input gives one line, exit 1, nothing written.
 
 Cases on the small deck tests/regression/geometry/base.nml (a 3 x 3 quad square from Gmsh):
 triangles (a .geo without recombination), a boundary name the mesh lacks (the message lists the

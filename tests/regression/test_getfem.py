@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""contact2d's quasi-static end state against an independent static solver (issue 4).
+"""contact2d's quasi-static end state against an independent static solver.
 
 postproc/getfem_reference.py solves the same discrete problem (SPEC 2-3) on the same mesh with
 GetFEM (python3-getfem): P1 with the nodal rigid-obstacle brick, P0 with the basic contact brick

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""contact2d's Coulomb end state against GetFEM's Coulomb contact on the same path (issue 11).
+"""contact2d's Coulomb end state against GetFEM's Coulomb contact on the same path.
 
 postproc/getfem_coulomb.py follows the deck's load path quasi-statically in load increments with
 GetFEM's basic contact brick (B_N = N, B_T = T, Coulomb coefficient mu, friction on the slip
@@ -12,7 +12,7 @@ increment since the previous increment), P1 multipliers. Cases, coulomb_sliding_
   state (the /fields snapshot at 4e-5 s, end of the hold) and follows the shearing stage in 5
   increments. From t = 0 both would approach the quasi-static path only to first order (contact
   grows under friction while pressing; docs/friction.md section 9).
-Bound: relative energy-norm difference <= 1e-6 (issue 11), and the contact status node for node.
+Bound: relative energy-norm difference <= 1e-6, and the contact status node for node.
 Measured (docs/friction.md sections 5 and 9): 3e-11 (full sliding) and 8e-8 (partial slip, 4x
 ramp; 5e-6 with the deck's ramp, 1.3e-9 with 16x), contact2d relaxed to tol_residual = 1e-11;
 2.4e-7 on mindlin_cylinder (the deck's tol_residual 1e-8 and ramps).
@@ -68,7 +68,7 @@ def body(t):
         else:
             diff = compare(run.h5, ref)["errors"]["energy"]
         t.check_le(run, "relative energy-norm difference to GetFEM", diff, 1e-6,
-                   reason="issue 11 acceptance; measured 3e-11 (sliding), 8e-8 (partial slip, 4x ramp), 2.4e-7 "
+                   reason="measured 3e-11 (sliding), 8e-8 (partial slip, 4x ramp), 2.4e-7 "
                    "(mindlin_cylinder from its pressed state)")
         with run.open() as a, c2dtest.h5py.File(ref, "r") as b:
             sa, sb = a["final/contact/status"][()].tolist(), b["final/contact/status"][()].tolist()

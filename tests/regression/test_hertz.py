@@ -1,4 +1,4 @@
-"""Regression: Hertz contact of a cylinder (issue 10), P1 or P0, at the shipped level (0).
+"""Regression: Hertz contact of a cylinder, P1 or P0, at the shipped level (0).
 
 --scene indenter: inputs/hertz_indenter_<m>.nml, a rigid cylinder (obstacle = 'circle') on an
 elastic block; --scene cylinder: inputs/hertz_cylinder_<m>.nml, an elastic half-disk on a rigid

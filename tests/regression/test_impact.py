@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Impact of a block on the rigid plane against the exact 1D wave solution (issue 12).
+"""Impact of a block on the rigid plane against the exact 1D wave solution.
 
 inputs/impact_bar_<m>.nml: a block of height L with roller sides (uniaxial strain) moving with
 -v0 hits the plane after a gap g0. Exact (deck header): contact from t0 = g0/v0 for 2L/c,
@@ -54,7 +54,7 @@ def lagrange(t, name):
         t.require(me["contact"], "no contact force at all")
         t.info(run, "dt [s], dt/dt_crit, steps", "%.4e, %.3f, %d" % (dt, me["dt_ratio"], me["steps"]))
         t.check_ge(run, "contact start t_first [s] >= t0 - dt", me["start"], ex["t0"] - dt * (1 + 1e-9),
-                   reason="within one step of t0 = g0/v0 (issue 12)")
+                   reason="within one step of t0 = g0/v0")
         t.check_le(run, "contact start t_first [s] < t0", me["start"], ex["t0"] * (1 - 1e-12),
                    reason="the forward increment acts at the step before the bottom would penetrate")
         t.check(run, "contact over before t_end", me["ended"], "last force before the last step",
@@ -62,14 +62,14 @@ def lagrange(t, name):
         t.info(run, "force-free steps inside the contact (chatter)", me["gaps_inside"])
         tol = 0.02 * ex["duration"] + 2 * dt
         t.check_close(run, "contact duration [s] = 2L/c", ex["duration"], me["duration"], atol=tol,
-                      reason="issue 12: 2 %% plus two steps (%.3e s)" % tol)
+                      reason="2 %% plus two steps (%.3e s)" % tol)
         perr = me["pressure_mean"] / ex["pressure"] - 1
         t.info(run, "mean pressure / rho c v0 - 1", "%+.4f (plateau, middle 80 %%: %+.4f; rms oscillation %.4f)"
                % (perr, me["pressure_plateau"] / ex["pressure"] - 1, me["pressure_osc_rms"]))
         if level == LEVELS[-1]:
             t.check_close(run, "mean pressure over the contact [MPa] = rho c v0", ex["pressure"],
                           me["pressure_mean"], rtol=0.02,
-                          reason="issue 12 (2 %); the mean is impulse/duration, both biased O(h) (lost kinetic "
+                          reason="2 %; the mean is impulse/duration, both biased O(h) (lost kinetic "
                                  "energy, up to two extra steps): 2.4 % low at level 2, 1.9 % at 3, 1.0 % at 4")
         verr = abs(me["rebound_velocity"] / ex["v0"] - 1)
         t.info(run, "rebound velocity / v0", "%.5f (normal contact work / E0 %.5f)" % (
@@ -78,7 +78,7 @@ def lagrange(t, name):
             # the rebound loses the normal contact work (each node stopped perfectly inelastically,
             # an O(h) energy loss) and the vibration energy left in the bar: measured 2.44 % low at
             # level 2, 1.47 % at 3, 0.90 % at 4 (order 0.7); 3 % is the level-2 value with a margin
-            # of 1.23 (was 5 %, issue 12's acceptance)
+            # of 1.23
             t.check_close(run, "rebound velocity [mm/s] = +v0 (shipped level)", ex["v0"], me["rebound_velocity"],
                           rtol=0.03, reason="O(h) inelastic node stops; measured 2.44 % at the shipped level")
         t.check_ge(run, "normal contact work / E0 >= 0", me["normal_work"], 0.0,
@@ -86,7 +86,7 @@ def lagrange(t, name):
         t.check_le(run, "penetration (max over steps) [mm]", me["penetration_max"], 1e-12 * ex["gap"],
                    reason="multipliers close the gap exactly (P1 per node, P0 per dual cell), to round-off")
         t.check_le(run, "energy balance error (max over steps)", me["balance_error_max"], 1e-10,
-                   reason="issue 12: the discrete balance with E_kin0 and W_normal closes to round-off")
+                   reason="the discrete balance with E_kin0 and W_normal closes to round-off")
         rebound_err.append(verr)
         work.append(me["normal_work"])
     where = "levels %s" % (LEVELS,)

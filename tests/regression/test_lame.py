@@ -1,4 +1,4 @@
-"""Regression: Lame ring in a rigid circular cavity (issue 10), P1 or P0, levels 1-3.
+"""Regression: Lame ring in a rigid circular cavity, P1 or P0, levels 1-3.
 
 inputs/lame_cavity_<m>.nml: a quarter ring (ra = 1, rb = 2 mm) inside the rigid cavity r = rb
 (obstacle = 'circle', body inside), frictionless, pressure p_i = 100 MPa on its inner boundary

@@ -1,4 +1,4 @@
-"""Regression (issue 13): the launcher `contact2d` sets libgomp's short spin before the solver
+"""Regression: the launcher `contact2d` sets libgomp's short spin before the solver
 loads, unless the user chose a wait or a binding, and starts `contact2d-solver` once, with the
 same arguments and process id.
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Mass scaling on the graded Hertz meshes (issue 13) and the general-path sweep's thread bits.
+"""Mass scaling on the graded Hertz meshes and the general-path sweep's thread bits.
 
 The Hertz decks (hertz_cylinder_p1, hertz_indenter_p1, level 0, frictionless) run twice: as
 shipped and with solver:mass_scaling = 4 dt_critical (dt_critical the element bound of the

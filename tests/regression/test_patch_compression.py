@@ -78,14 +78,14 @@ def body(t):
                       reason="geometry: the bottom lies on the obstacle, round-off only")
         if mult == "P1":
             t.check_le(run, "P1 penetration max_i d_i / delta (per node)", np.max(d) / DELTA, 1e-12,
-                       reason="P1 closes each node exactly: round-off only (issue 3)")
+                       reason="P1 closes each node exactly: round-off only")
         else:
             D = c2dtest.dual_coupling(s)
             t.check_close(run, "D 1 = w (coupling built from the abscissa)", w, D @ np.ones(len(s)), rtol=1e-14,
                           reason="algebraic identity, round-off")
             cell = np.maximum(D @ d, 0.0) / w
             t.check_le(run, "P0 penetration max_i max((D d)_i, 0)/w_i / delta (per dual cell)",
-                       np.max(cell) / DELTA, 1e-12, reason="the LCP is solved to round-off (issue 3)")
+                       np.max(cell) / DELTA, 1e-12, reason="the LCP is solved to round-off")
             t.info(run, "P0 largest nodal d_i / delta (not constrained per node)", "%.3e" % (np.max(d) / DELTA))
 
 

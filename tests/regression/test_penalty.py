@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Penalty contact against the Lagrange multipliers on patch_compression (issue 6).
+"""Penalty contact against the Lagrange multipliers on patch_compression.
 
 - Multipliers (P1 per node, P0 per dual cell) do not penetrate: max penetration <= 1e-12 delta.
 - The penalty penetrates uniformly by d = p/k_p, p = E delta / (H (1 - nu^2) + E/k_p) (a spring of
@@ -39,7 +39,7 @@ def body(t):
             pen = penetration(f, m.upper())
             dt_elastic = float(f.attrs["dt_critical"])
         t.check_le(run, "max penetration / delta (%s)" % m.upper(), pen / DELTA, 1e-12,
-                   reason="forward-increment multipliers close the gap exactly (issue 6)")
+                   reason="forward-increment multipliers close the gap exactly")
 
     # ---- penalty at several k_p: d = p/k_p, penalty-adjusted step ---------------------------------
     for kp in (1e5, 1e6, 1e7):
@@ -64,7 +64,7 @@ def body(t):
         t.check_equal(run, "converged", 1, converged)
         t.check_close(run, "penetration = p/k_p (k_p = %g)" % kp, p / kp, pen, rtol=1e-8,
                       reason="a uniform spring in series, exact for Q1: only the relaxation residual (tol_residual) "
-                      "remains; measured <= 1e-11 (issue 6 asked 5 %)")
+                      "remains; measured <= 1e-11")
         t.info(run, "true limit with the springs / penalty dt_critical", "%.4f" % (dt_true / dt_crit))
         t.check_ge(run, "true limit (dense eigensolve, springs included) / penalty dt_critical", dt_true / dt_crit,
                    1 - 1e-12, reason="the nodal bound 2/sqrt(omega_el^2 + k_p w/m) must be conservative")

@@ -6,7 +6,7 @@ traps would kill a run that let the energy grow to overflow.
 --scene contact_p1   inputs/baillet_sassi_2002_p1.nml at mesh:level=2 (contact, Tresca as the deck)
 --scene contact_p0   inputs/baillet_sassi_2002_p0.nml at mesh:level=2
 --scene contact_p1_coulomb, contact_p0_coulomb: the same with Coulomb friction mu = 0.3 instead of
-                     Tresca (issue 11: the limit mu F_n,i follows the normal force of each step)
+                     Tresca (the limit mu F_n,i follows the normal force of each step)
 
 Facts checked:
 - dt_critical is the element bound 2/omega_e; for square Q1 elements of side h it has the closed

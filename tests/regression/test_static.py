@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The static engine (solver:method = 'static', --static; issue 14, docs/static.md).
+"""The static engine (solver:method = 'static', --static; docs/static.md).
 
 Facts checked, each recomputed here from the HDF5 file (numpy only) rather than read back:
 1. KKT conditions of problem (13) on the paper scene, P1 and P0, frictionless and Tresca, levels

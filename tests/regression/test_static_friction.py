@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The static engine with force-dependent friction limits: Coulomb and tresca_scope = 'contact' (issue 14).
+"""The static engine with force-dependent friction limits: Coulomb and tresca_scope = 'contact'.
 
 docs/static.md "Coulomb friction and tresca_scope = 'contact'". KKT residuals are recomputed from
 the HDF5 file alone (static_kkt.py). Facts checked:

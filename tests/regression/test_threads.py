@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""OpenMP runs give the same bits as serial runs (issue 5).
+"""OpenMP runs give the same bits as serial runs.
 
 The paper scene at level 4 (10 241 nodes, above the 4096-node threshold where the kernels go
 parallel), P1 and P0 with Tresca, run with OMP_NUM_THREADS=1 and 2: every history series, the

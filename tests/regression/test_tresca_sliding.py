@@ -106,7 +106,7 @@ def body(t):
         t.check(run, "final sample in the sliding window", bool(window[-1]), "True", bool(window[-1]))
         if nwin:
             t.check_close(run, "tangential_force_total = s L while sliding", S * L, ftot[window], rtol=1e-10,
-                          reason="issue 3: s L to 1e-10 relative (sum of nodal forces at their threshold)")
+                          reason="s L to 1e-10 relative (sum of nodal forces at their threshold)")
         t.check_le(run, "|tangential_force_total| / (s L) at every sample", np.abs(ftot) / (S * L), 1 + 1e-12,
                    reason="|F_t,i| <= s w_i at each node; 1e-12 for the round-off of the sum")
 
@@ -138,11 +138,11 @@ def body(t):
                           "must be << the 1e-3 check (was 1e-3)")
         t.check_close(run, "stage-2 friction dissipation vs s sum_i w_i |slip_i|", predicted, d_stage2, rtol=1e-3,
                       reason="nodes that stick for part of the stage dissipate nothing, plus the bracket above; "
-                             "measured 1.8e-5 (level 2), 2e-11 (level 1): margin 55 (was 1 %, issue 3)")
+                             "measured 1.8e-5 (level 2), 2e-11 (level 1): margin 55 (was 1 %)")
 
         # -- energy balance --------------------------------------------------------------------------
         t.check_le(run, "energy_balance_error at every sample", hist["energy_balance_error"], 1e-12,
-                   reason="the staggered balance closes to round-off (measured <= 5e-15; issue 3 asked 1e-3)")
+                   reason="the staggered balance closes to round-off (measured <= 5e-15)")
 
 
 if __name__ == "__main__":
