@@ -14,7 +14,7 @@ u_x = +5e-3 mm. Facts (docs/friction.md sections 1 and 4):
 - Friction work of stage 2 = sum over time of mu sum_i F_n,i |d slip_i|. From 16 snapshots
   (end of stage 1, 14 during stage 2, the final state) with the trapezoidal rule in time; the
   quadrature error is what the tolerance covers (it is measured and printed).
-- The discrete energy balance closes (< 1e-3).
+- The discrete energy balance closes (<= 1e-12 at every sample).
 The sliding window: top moved by at least 2.5 mu (F_n/L) H / G (uniform-shear estimate of the
 shear the block needs to carry mu F_n, with margin for the free sides and the tilting).
 Runs at mesh:level=1 (the deck) and level=2.

@@ -3,7 +3,7 @@
 
 - Multipliers (P1 per node, P0 per dual cell) do not penetrate: max penetration <= 1e-12 delta.
 - The penalty penetrates uniformly by d = p/k_p, p = E delta / (H (1 - nu^2) + E/k_p) (a spring of
-  stiffness k_p per unit length in series with the block): measured within 5 %.
+  stiffness k_p per unit length in series with the block): checked to 1e-8.
 - Its stable step shrinks with k_p: dt_critical = 2/sqrt(omega_max^2 + max_i k_p w_i/m_i); with
   solver:mass_scaling = dt_t it is at least 2/sqrt((2/dt_t)^2 + max_i k_p w_i/m_i) (scaled masses)
   and below the scaled system's true limit.
