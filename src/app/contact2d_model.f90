@@ -83,7 +83,12 @@ contains
       stat = 0
       model%body_mass = sum(model%stiff%mass)
       dt_scaled = 0
-      if (deck%solver%mass_scaling > 0) then
+      if (deck%solver%mass_scaling > 0 .and. deck%solver%method == 'static') then
+         ! the static engine solves K u = f: no mass to scale (docs/static.md); said, not applied, so
+         ! that --static runs a deck made for the explicit engine
+         call model%warnings%add('solver:mass_scaling = '//str(deck%solver%mass_scaling)// &
+                                 ' s is not used by the static engine (no mass, no time step)')
+      else if (deck%solver%mass_scaling > 0) then
          call mass_scale(model%stiff, deck%solver%mass_scaling, model%added_mass, model%scaled_nodes, dt_scaled)
       end if
 

@@ -1488,12 +1488,6 @@ contains
             errmsg = 'solver:static_splits = '//str(s%static_splits)//' must be between 0 and 20'
             return
          end if
-         ! the static engine solves K u = f: a fictitious mass would not be applied (docs/static.md)
-         if (s%method == 'static' .and. s%mass_scaling > 0) then
-            errmsg = 'solver:mass_scaling = '//str(s%mass_scaling)//" has no meaning with method = 'static' "// &
-                     '(the static engine has no mass and no time step); set mass_scaling = 0'
-            return
-         end if
          if (s%method == 'static' .and. s%compare_static) then
             errmsg = "solver:compare_static = .true. compares an explicit run with the static solution; "// &
                      "it has no meaning with method = 'static'"

@@ -69,9 +69,9 @@ class PlotRun(TempDirCase):
             self.assertEqual(run.status, "converged")
             self.assertEqual(run.attr("multiplier"), "P1")
             for path, unit in (("mesh/coordinates", "mm"), ("final/displacement", "mm"),
-                               ("final/contact/pressure", "MPa"), ("final/contact/normal_force", "N"),
+                               ("final/contact/pressure", "MPa"), ("final/contact/normal_force", "N/mm"),
                                ("contact/abscissa", "mm"), ("history/time", "s"),
-                               ("history/kinetic_energy", "mJ"), ("history/normal_force_total", "N")):
+                               ("history/kinetic_energy", "mJ"), ("history/normal_force_total", "N/mm")):
                 self.assertEqual(run.units(path), unit, path)
             self.assertEqual(run.attr_units("dt"), "s")
             hist = run.histories()

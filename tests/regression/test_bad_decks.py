@@ -156,8 +156,6 @@ CASES = [
      r"xdmf_fish\.nml:15: output:xdmf = fish is not a logical value; give \.true\. or \.false\.$"),
     ("set_progress_yes", "inputs/" + UNIAXIAL, ["--set", "output:progress=yes"],
      r"--set 'output:progress=yes': output:progress = yes is not a logical value"),
-    ("mass_scaling_static", "inputs/patch_compression_p1.nml", ["--static", "--set", "solver:mass_scaling=1e-7"],
-     r"solver:mass_scaling = 1e-7 has no meaning with method = 'static'.*\(from --set 'solver:mass_scaling=1e-7'\)$"),
     ("obstacle_point_with_circle", "inputs/hertz_indenter_p1.nml", ["--set", "contact:obstacle_point=0,1"],
      r"contact: obstacle_point and obstacle_normal are set but obstacle = 'circle' ignores them.*"
      r"\(from --set 'contact:obstacle_point=0,1'\)$"),

@@ -13,7 +13,10 @@ needs 18-20 active-set iterations, each half fewer than 8):
    states: equal to 1e-12 of max |u|, measured bitwise);
 3. with static_splits = 0 the same cap is reported, not hidden: exit 2, one error line naming
    solver:static_iterations, the file written with converged = 0;
-4. out-of-range values are refused before anything is written: one line, exit 1.
+4. out-of-range values are refused before anything is written: one line, exit 1;
+5. the shipped mindlin decks use solver:mass_scaling, which the static engine has no use for (no
+   mass, no time step): --static runs them as they are, with one warning naming it, and writes
+   added_mass = 0.
 """
 import os
 
@@ -34,8 +37,12 @@ def body(t):
         t.expect_exit(two, 0)
         t.check(split, "summary names the halving (%s)" % m, "1 halving(s)" in split.stdout, "a halving line",
                 "present" if "1 halving(s)" in split.stdout else "absent")
+        warned = [l for l in split.stderr_lines() if "warning" in l and "solver:mass_scaling" in l]
+        t.check(split, "one warning: mass_scaling not used by the static engine (%s)" % m, len(warned) == 1,
+                "one line", repr(warned))
         with split.open() as a, two.open() as b:
             t.check_equal(split, "converged (%s)" % m, 1, int(a.attrs["converged"]))
+            t.check_equal(split, "added_mass (%s)" % m, 0.0, float(a.attrs["added_mass"]))
             t.check_equal(split, "static_splits (%s)" % m, 1, int(a.attrs["static_splits"]))
             t.check_equal(split, "static_steps (%s)" % m, 2, int(a.attrs["static_steps"]))
             times = a["history/time"][()]
