@@ -8,6 +8,8 @@ Routes (each run at every mesh level of --levels, P1 and P0 multipliers of
 inputs/baillet_sassi_2002_p1.nml / _p0.nml):
   explicit            the shipped deck (tol_residual 1e-8), OMP_NUM_THREADS=1
   explicit tol 1e-10  solver:tol_residual = 1e-10, OMP_NUM_THREADS=1
+  explicit tol 1e-3  solver:tol_residual = 1e-3, tol_kinetic = 1e-6 (kinetic energy goes with the
+                      square of the out-of-balance), OMP_NUM_THREADS=1; tol 1e-2 likewise (1e-4)
   explicit mass x2    solver:mass_scaling = 2 x dt_critical (dt_critical of the shipped run at that
                       level), OMP_NUM_THREADS=1
   explicit all cores  the shipped deck, OMP_NUM_THREADS unset (every core)
@@ -49,6 +51,8 @@ TIGHT = 1e-10
 # route, label, colour, marker
 ROUTES = (("explicit", "explicit, shipped tol 1e-8, 1 thread", "C0", "o"),
           ("explicit_tol1e-10", "explicit, tol 1e-10, 1 thread", "C1", "v"),
+          ("explicit_tol1e-3", "explicit, tol 1e-3 (kinetic 1e-6), 1 thread", "C5", "<"),
+          ("explicit_tol1e-2", "explicit, tol 1e-2 (kinetic 1e-4), 1 thread", "C6", ">"),
           ("explicit_mass2", "explicit, mass scaling 2 dt_c, 1 thread", "C2", "^"),
           ("explicit_all_cores", "explicit, shipped tol, all cores", "C3", "D"),
           ("static", "contact2d --static, 1 thread", "k", "s"),
@@ -114,6 +118,10 @@ def main():
                     ("explicit", shipped_h5, base, 1, False),
                     ("explicit_tol1e-10", out / f"{m}_k{k}_tol1e-10.h5", {**base, "solver:tol_residual": TIGHT}, 1,
                      False),
+                    ("explicit_tol1e-3", out / f"{m}_k{k}_tol1e-3.h5",
+                     {**base, "solver:tol_residual": 1e-3, "solver:tol_kinetic": 1e-6}, 1, False),
+                    ("explicit_tol1e-2", out / f"{m}_k{k}_tol1e-2.h5",
+                     {**base, "solver:tol_residual": 1e-2, "solver:tol_kinetic": 1e-4}, 1, False),
                     ("explicit_mass2", out / f"{m}_k{k}_mass2.h5", None, 1, False),
                     ("explicit_all_cores", out / f"{m}_k{k}_all_cores.h5", base, None, False)]
             for route, h5, sets, threads, static in todo:
