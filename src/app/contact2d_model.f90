@@ -2,6 +2,7 @@
 !> built from a validated deck. Every cross-group check that needs the model lives here.
 module contact2d_model
    use contact2d_kinds, only: wp
+   use contact2d_version, only: program_name
    use contact2d_strings, only: str
    use contact2d_checks, only: check_positive
    use contact2d_messages, only: messages_t
@@ -52,7 +53,9 @@ contains
 
       if (len_trim(deck%mesh%file) > 0) then
          ! a Gmsh mesh (docs/geometry.md): quads only, oriented, Jacobians checked
-         call gmsh_read(beside(deck%path, trim(deck%mesh%file)), deck%mesh%level, model%mesh, stat, errmsg)
+         ! (a crash or an exit() inside Gmsh is reported by gmsh_read itself in the driver's form)
+         call gmsh_read(beside(deck%path, trim(deck%mesh%file)), deck%mesh%level, model%mesh, stat, errmsg, &
+                        context=program_name//': error: '//deck%path//': ')
          if (stat /= 0) then
             errmsg = deck%path//': '//errmsg
             return

@@ -23,6 +23,7 @@ module contact2d_deck
    use contact2d_kinds, only: wp
    use contact2d_strings, only: str, lower, join, printable
    use contact2d_material, only: material_t, material_init
+   use contact2d_mesh, only: mesh_max_elements
    use contact2d_checks, only: check_finite, check_range, max_magnitude
    use contact2d_sys, only: sys_path_info, sys_strerror, kind_missing, kind_file, kind_dangling, kind_names
    use, intrinsic :: iso_c_binding, only: c_long_long
@@ -1379,9 +1380,9 @@ contains
             errmsg = 'mesh:level = '//str(m%level)//' must be in 0..12'
             return
          end if
-         if (real(m%nx, wp)*real(m%ny, wp)*4.0_wp**m%level > 5.0e7_wp) then
+         if (real(m%nx, wp)*real(m%ny, wp)*4.0_wp**m%level > mesh_max_elements) then
             errmsg = 'mesh: nx*ny*4**level = '//str(real(m%nx, wp)*real(m%ny, wp)*4.0_wp**m%level)// &
-                     ' elements is more than this program is meant for (5e7)'
+                     ' elements is more than this program is meant for ('//str(mesh_max_elements)//')'
             return
          end if
          end if

@@ -15,10 +15,10 @@ module contact2d_gmsh
    use omp_lib, only: omp_get_max_threads, omp_set_num_threads
    use, intrinsic :: ieee_arithmetic, only: ieee_is_finite
    use contact2d_gmsh_config, only: gmsh_library_path
-   use contact2d_kinds, only: wp
+   use contact2d_kinds, only: wp, i8
    use contact2d_strings, only: str
    use contact2d_sys, only: sys_path_info, sys_strerror, kind_file, kind_missing, kind_names
-   use contact2d_mesh, only: mesh_t
+   use contact2d_mesh, only: mesh_t, mesh_max_elements
    use contact2d_renumber, only: rcm_order, group_order
    implicit none
    private
@@ -173,6 +173,16 @@ module contact2d_gmsh
          import :: c_ptr
          type(c_ptr) :: msg
       end function c_dlerror
+      !> the guard around Gmsh's calls (contact2d_gmsh_guard.c)
+      subroutine c2d_gmsh_guard_begin() bind(C, name='c2d_gmsh_guard_begin')
+      end subroutine c2d_gmsh_guard_begin
+      subroutine c2d_gmsh_guard_end() bind(C, name='c2d_gmsh_guard_end')
+      end subroutine c2d_gmsh_guard_end
+      subroutine c2d_gmsh_guard_lines(crash, crash_n, quit, quit_n) bind(C, name='c2d_gmsh_guard_lines')
+         import :: c_char, c_int
+         character(kind=c_char), intent(in) :: crash(*), quit(*)
+         integer(c_int), value :: crash_n, quit_n
+      end subroutine c2d_gmsh_guard_lines
       function c_strlen(s) bind(C, name='strlen') result(n)
          import :: c_ptr, c_size_t
          type(c_ptr), value :: s
@@ -191,12 +201,15 @@ contains
 
    !> Read (and for a .geo, mesh) `path`, refine it `level` times and fill `mesh` with its quads
    !> (orientation not yet checked: mesh%orient does that) and named boundary groups.
-   subroutine gmsh_read(path, level, mesh, stat, errmsg)
+   !> context: put before the one line written when Gmsh crashes or ends the program while it
+   !> works (the caller's error prefix, e.g. 'contact2d: error: deck.nml: ').
+   subroutine gmsh_read(path, level, mesh, stat, errmsg, context)
       character(len=*), intent(in) :: path
       integer, intent(in) :: level
       type(mesh_t), intent(inout) :: mesh
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
+      character(len=*), intent(in), optional :: context
       logical :: halting(size(ieee_usual))
       integer :: threads
       ! Gmsh's own arithmetic may raise IEEE flags (e.g. a 0/0 it handles itself): no floating-
@@ -206,21 +219,29 @@ contains
       ! Gmsh sets the OpenMP thread count to its General.NumThreads (1) in gmshInitialize: the
       ! run's own count (OMP_NUM_THREADS, or all cores) is put back after it
       threads = omp_get_max_threads()
-      call read_untrapped(path, level, mesh, stat, errmsg)
+      if (present(context)) then
+         call read_untrapped(path, level, mesh, stat, errmsg, context)
+      else
+         call read_untrapped(path, level, mesh, stat, errmsg, '')
+      end if
       call omp_set_num_threads(threads)
       call ieee_set_flag(ieee_all, .false.)
       call ieee_set_halting_mode(ieee_usual, halting)
    end subroutine gmsh_read
 
-   subroutine read_untrapped(path, level, mesh, stat, errmsg)
+   subroutine read_untrapped(path, level, mesh, stat, errmsg, context)
       character(len=*), intent(in) :: path
       integer, intent(in) :: level
       type(mesh_t), intent(inout) :: mesh
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      integer(c_int) :: ierr, ierr2
+      character(len=*), intent(in) :: context
+      integer(c_int) :: ierr
       integer(c_long_long) :: dev, ino, bytes
       integer :: k, kind, err
+      real(wp) :: n2, n1, nfinal
+      character(len=:), allocatable :: head
+      character(len=*), parameter :: stage_collect = 'passing its mesh to contact2d'
 
       stat = 1
       call sys_path_info(path, kind, dev, ino, bytes, err)
@@ -238,51 +259,130 @@ contains
       call load_gmsh(stat, errmsg)
       if (stat /= 0) return
       stat = 1
+      head = "mesh:file = '"//path//"'"
+      ! From here on Gmsh's ways of ending the process (a crash, an uncaught C++ exception, exit()
+      ! called by a .geo's Exit statement) end it with one line and status 1 (contact2d_gmsh_guard.c)
+      call stage('initialising the Gmsh library')
+      call c2d_gmsh_guard_begin()
       call gmshInitialize(0_c_int, c_null_ptr, 0_c_int, ierr)
       if (ierr /= 0) then
-         errmsg = 'mesh: the Gmsh library failed to initialise (ierr = '//str(int(ierr))//')'
+         call give_up('mesh: the Gmsh library failed to initialise (ierr = '//str(int(ierr))//')')
          return
       end if
       ! quiet: Gmsh's own log stays off the terminal; its last error is quoted instead
       call gmshOptionSetNumber(cstr('General.Terminal'), 0.0_c_double, ierr)
       if (ierr == 0) call gmshOptionSetNumber(cstr('General.Verbosity'), 1.0_c_double, ierr)
+      call stage('reading it')
       if (ierr == 0) call gmshOpen(cstr(path), ierr)
       if (ierr /= 0) then
-         errmsg = "mesh:file = '"//path//"': Gmsh cannot read it"//last_error()
-         call gmshFinalize(ierr2)
+         call give_up(head//': Gmsh cannot read it'//last_error())
          return
       end if
       if (ends_with(path, '.geo')) then
          ! Gmsh 4.8 (Debian 12) crashes in its quad algorithm 8: refused before meshing
          if (crashing_algorithm()) then
-            errmsg = "mesh:file = '"//path//"' sets Mesh.Algorithm = 8, which crashes (segfault) the Gmsh "// &
-                     'library older than 4.9 (Debian 12 has 4.8.4); use Mesh.Algorithm = 6 with Mesh.RecombineAll = 1 '// &
-                     '(docs/geometry.md)'
-            call gmshFinalize(ierr2)
+            call give_up(head//' sets Mesh.Algorithm = 8, which crashes (segfault) the Gmsh '// &
+                         'library older than 4.9 (Debian 12 has 4.8.4); use Mesh.Algorithm = 6 with Mesh.RecombineAll = 1 '// &
+                         '(docs/geometry.md)')
             return
          end if
+         ! The size before the surfaces are meshed (Gmsh 4.8 has no element-count limit): the
+         ! curves first. A square whose boundary carries n1 segments of size h holds (n1/4)^2
+         ! quadrilaterals of side h; a surface meshed at the size of its boundary holds about as
+         ! many (a disk 4/pi times more, a thin strip far fewer): refused above the cap
+         call stage('meshing its curves')
+         call gmshModelMeshGenerate(1_c_int, ierr)
+         if (ierr /= 0) then
+            call give_up(head//': Gmsh failed to mesh it'//last_error())
+            return
+         end if
+         n1 = count_option('Mesh.NbNodes')
+         if ((n1/4)**2 > mesh_max_elements) then
+            call give_up(head//': its curves are meshed with '//str(n1)//' nodes; a square with that '// &
+                         'boundary holds (n/4)^2 = '//str(real(nint((n1/4)**2, i8), wp))//' quadrilaterals, more than '// &
+                         'this program is meant for ('//str(mesh_max_elements)//'): coarsen the mesh '// &
+                         '(larger characteristic lengths, fewer nodes or layers; docs/geometry.md)')
+            return
+         end if
+         call stage('meshing it')
          call gmshModelMeshGenerate(2_c_int, ierr)
          if (ierr /= 0) then
-            errmsg = "mesh:file = '"//path//"': Gmsh failed to mesh it"//last_error()
-            call gmshFinalize(ierr2)
+            call give_up(head//': Gmsh failed to mesh it'//last_error())
             return
          end if
       end if
+      ! the size after refinement is known before refining: each level splits a 2D element in four
+      n2 = count_option('Mesh.NbQuadrangles') + count_option('Mesh.NbTriangles')
+      nfinal = n2*4.0_wp**level
+      if (nfinal > mesh_max_elements) then
+         call give_up(head//' has '//str(n2)//' 2D elements; refined level = '//str(level)//' times that is '// &
+                      str(n2)//'*4**'//str(level)//' = '//str(nfinal)//' elements, more than this program '// &
+                      'is meant for ('//str(mesh_max_elements)//')')
+         return
+      end if
       do k = 1, level
+         call stage('refining it (refinement '//str(k)//' of '//str(level)//')')
          call gmshModelMeshRefine(ierr)
          if (ierr /= 0) then
-            errmsg = "mesh:file = '"//path//"': Gmsh refinement "//str(k)//' failed'//last_error()
-            call gmshFinalize(ierr2)
+            call give_up(head//': Gmsh refinement '//str(k)//' failed'//last_error())
             return
          end if
       end do
+      call stage(stage_collect)
       call collect(path, mesh, stat, errmsg)
-      call gmshFinalize(ierr2)
-      if (stat == 0 .and. ierr2 /= 0) then
+      if (stat /= 0) then
+         call give_up(errmsg)
+         return
+      end if
+      call stage('finalising the Gmsh library')
+      call gmshFinalize(ierr)
+      call c2d_gmsh_guard_end()
+      if (ierr /= 0) then
          stat = 1
-         errmsg = 'mesh: gmshFinalize failed (ierr = '//str(int(ierr2))//')'
+         errmsg = 'mesh: gmshFinalize failed (ierr = '//str(int(ierr))//')'
       end if
    contains
+      !> Name the stage in the line the guard writes if Gmsh crashes or exits during it.
+      subroutine stage(what)
+         character(len=*), intent(in) :: what
+         character(len=:), allocatable :: crash, quit
+         crash = context//head//': the Gmsh library crashed while '//what
+         quit = context//head//': Gmsh ended the program while '//what//' (exit() called by Gmsh: an Exit '// &
+                'statement in the .geo, or a fatal Gmsh error); contact2d needs the mesh: remove the Exit '// &
+                '(a .geo is a program Gmsh runs, docs/geometry.md)'
+         if (what == stage_collect) then
+            ! Fortran's own run-time errors (a failed allocation) end the program too, their
+            ! message discarded with Gmsh's stderr
+            crash = context//head//': crashed while '//what
+            quit = context//head//': the program ended while '//what//' (a failed allocation: the mesh '// &
+                   'may not fit in the memory this process may use)'
+         end if
+         call c2d_gmsh_guard_lines(crash, int(len(crash), c_int), quit, int(len(quit), c_int))
+      end subroutine stage
+      !> Stop reading with errmsg = msg and finalise the library. After a Gmsh failure (out of
+      !> memory, say) gmshFinalize was seen to crash: should it, the guard writes msg itself,
+      !> naming the crash, so that the one line still says why the mesh was refused.
+      subroutine give_up(msg)
+         character(len=*), intent(in) :: msg
+         character(len=:), allocatable :: crash, quit
+         integer(c_int) :: ierr2
+         errmsg = msg
+         stat = 1
+         crash = context//msg//'; then the Gmsh library crashed while finalising'
+         quit = context//msg//'; then Gmsh ended the program while finalising'
+         call c2d_gmsh_guard_lines(crash, int(len(crash), c_int), quit, int(len(quit), c_int))
+         call gmshFinalize(ierr2)
+         call c2d_gmsh_guard_end()
+      end subroutine give_up
+      !> A read-only Gmsh statistic (Mesh.NbNodes, Mesh.NbQuadrangles, ...) of the current mesh.
+      real(wp) function count_option(name)
+         character(len=*), intent(in) :: name
+         real(c_double) :: v
+         integer(c_int) :: e
+         call gmshOptionGetNumber(cstr(name), v, e)
+         count_option = 0
+         if (e == 0) count_option = real(v, wp)
+      end function count_option
       !> Mesh.Algorithm = 8 with a Gmsh older than 4.9 (4.8 has no General.MajorVersion option:
       !> a library that does not say its version counts as old).
       logical function crashing_algorithm()

@@ -8,7 +8,12 @@ module contact2d_mesh
    use contact2d_strings, only: str
    implicit none
    private
-   public :: mesh_t, side_names, node_elements
+   public :: mesh_t, side_names, node_elements, mesh_max_elements
+
+   !> The most elements this program is meant for: the built-in rectangle's nx ny 4^level and a
+   !> Gmsh mesh's element count times 4^level (each refinement splits a quadrilateral in four) are
+   !> refused above it before any mesh is made (docs/deck.md, docs/geometry.md).
+   real(wp), parameter :: mesh_max_elements = 5.0e7_wp
 
    !> Names of the four sides of the bounding box, in the order used by side ids 1..4.
    character(len=6), parameter :: side_names(4) = [character(len=6) :: 'bottom', 'right', 'top', 'left']

@@ -328,6 +328,27 @@ class Test:
         self.finish()
 
 
+# ---- input files ---------------------------------------------------------------------------------
+
+def write_grid_msh(path, nx, ny):
+    """A MSH 2.2 file of the unit square in nx x ny quads, physical curves 'bottom' and 'top'."""
+    def nid(i, j):
+        return j * (nx + 1) + i + 1
+    els = ["1 2 1 1 %d %d" % (nid(i, 0), nid(i + 1, 0)) for i in range(nx)]
+    els += ["1 2 2 3 %d %d" % (nid(i + 1, ny), nid(i, ny)) for i in range(nx)]
+    els += ["3 2 3 1 %d %d %d %d" % (nid(i, j), nid(i + 1, j), nid(i + 1, j + 1), nid(i, j + 1))
+            for j in range(ny) for i in range(nx)]
+    with open(path, "w") as f:
+        f.write('$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n1 1 "bottom"\n1 2 "top"\n'
+                '2 3 "square"\n$EndPhysicalNames\n$Nodes\n%d\n' % ((nx + 1) * (ny + 1)))
+        for j in range(ny + 1):
+            for i in range(nx + 1):
+                f.write("%d %r %r 0\n" % (nid(i, j), i / nx, j / ny))
+        f.write("$EndNodes\n$Elements\n%d\n" % len(els))
+        f.write("".join("%d %s\n" % (k + 1, e) for k, e in enumerate(els)))
+        f.write("$EndElements\n")
+
+
 # ---- independent reference computations (numpy) ------------------------------------------------
 
 def attr_str(value):

@@ -8,6 +8,14 @@ quadrilateral with a node twice (geometry/degenerate.msh), a node with a NaN coo
 (geometry/nan_coordinate.msh), a circle obstacle without its
 centre, a mesh file that does not exist, a .geo with Mesh.Algorithm = 8 (crashes Gmsh 4.8). Each runs in an empty directory with -o out.h5: exit 1,
 exactly one stderr line 'contact2d: error: ...' matching the case's pattern, no out.h5, no out.xmf.
+
+Size and Gmsh's own exits (docs/geometry.md "Size" and "What a Gmsh file may do"): a .msh of
+40 x 25 = 1000 quads (written here as MSH 2.2) and geometry/quads_1000.geo at level 8 are
+1000 * 4^8 = 6.5536e7 elements, over the cap of 5e7 (the built-in mesh's): refused before refining,
+within 60 s (today's main refined for more than 5 minutes); geometry/quads_1e8.geo (size 1e-4 on a
+unit square: 40 000 curve nodes, (40000/4)^2 = 1e8 quads) is refused after its curves are meshed,
+before its surface; geometry/exit.geo ends with `Exit;` (Gmsh calls exit(0): today's main ended
+with status 0, no line, no file).
 """
 import os
 import re
@@ -39,6 +47,14 @@ CASES = [
      r"obstacle = 'circle' needs obstacle_center"),
     ("missing_mesh_file", ["--set", "mesh:file='no_such_mesh.msh'"],
      r"no_such_mesh\.msh': no such file"),
+    ("geo_refined_beyond_cap", ["--set", "mesh:file='quads_1000.geo'", "--set", "mesh:level=8"],
+     r"mesh:file = '[^']*quads_1000\.geo' has 1000 2D elements; refined level = 8 times that is "
+     r"1000\*4\*\*8 = 6\.5536e7 elements, more than this program is meant for \(5e7\)"),
+    ("geo_meshes_beyond_cap", ["--set", "mesh:file='quads_1e8.geo'"],
+     r"mesh:file = '[^']*quads_1e8\.geo': its curves are meshed with 40000 nodes; .* \(n/4\)\^2 = 1e8 "
+     r"quadrilaterals, more than this program is meant for \(5e7\)"),
+    ("geo_exit_statement", ["--set", "mesh:file='exit.geo'"],
+     r"mesh:file = '[^']*exit\.geo': Gmsh ended the program while reading it .*Exit"),
     ("edge_with_gmsh_mesh", ["--set", "contact:boundary=''", "--set", "contact:edge='bottom'"],
      r"contact:edge = 'bottom' needs the built-in rectangle.*boundary ="),
 ]
@@ -51,10 +67,16 @@ def body(t):
     # a directory named like a mesh file (made here, outside the source tree)
     folder = os.path.join(t.workdir, "a_folder.msh")
     os.makedirs(folder, exist_ok=True)
+    msh = os.path.join(t.workdir, "quads_1000.msh")
+    c2dtest.write_grid_msh(msh, 40, 25)
     cases = CASES + [("directory_as_mesh", ["--set", "mesh:file='%s'" % folder],
-                      r"mesh:file = '[^']*a_folder\.msh' is a directory, not a regular file")]
+                      r"mesh:file = '[^']*a_folder\.msh' is a directory, not a regular file"),
+                     ("msh_refined_beyond_cap", ["--set", "mesh:file='%s'" % msh, "--set", "mesh:level=8"],
+                      r"mesh:file = '[^']*quads_1000\.msh' has 1000 2D elements; refined level = 8 times that is "
+                      r"1000\*4\*\*8 = 6\.5536e7 elements, more than this program is meant for \(5e7\)")]
     for name, args, pattern in cases:
-        run = t.run(deck, *args, name=name)
+        # a refusal comes before the work: 60 s is ample (loading Gmsh takes about 1 s)
+        run = t.run(deck, *args, name=name, timeout=60)
         t.expect_exit(run, 1, stop=False)
         lines = run.stderr_lines()
         t.check_equal(run, "one line on stderr", 1, len(lines))

@@ -112,6 +112,14 @@ def gmsh_loop_deck(t, folder):
     write(folder, "deck.nml", text.replace("'hertz_cylinder.geo'", "'l.geo'", 1))
 
 
+def gmsh_grid_deck(t, folder):
+    """tests/regression/geometry/base.nml as deck.nml on a 40 x 25 quad grid written as grid.msh."""
+    with open(os.path.join(t.here, "geometry", "base.nml")) as fh:
+        text = fh.read()
+    write(folder, "deck.nml", text.replace("'square_quads.geo'", "'grid.msh'"))
+    c2dtest.write_grid_msh(os.path.join(folder, "grid.msh"), 40, 25)
+
+
 def nan_cases():
     """(name, base, --set, pattern): every real of every group, NaN, Inf or beyond 1e30."""
     rows = [
@@ -267,6 +275,12 @@ def cases():
         # ---- memory ----
         ("mesh_does_not_fit", "u", ["--set", "mesh:nx=4000", "--set", "mesh:ny=3000"], None,
          r"mesh 12000000 elements, \d+ nodes: cannot allocate the \d+ MiB", {"rlimit_as": 3 * 1024 ** 3}),
+        # Gmsh out of memory while refining (1000 quads to level 6: 4.1e6, under the element cap; about
+        # 150 MiB of address space go to loading libgmsh): Gmsh's failure, or its crash in refining or
+        # in gmshFinalize, is one line (today's main: SIGSEGV, exit 139, a 150-line backtrace)
+        ("gmsh_out_of_memory", gmsh_grid_deck, ["--set", "mesh:level=6"], None,
+         r"mesh:file = 'grid\.msh'(: Gmsh refinement \d failed|: the Gmsh library crashed while refining)",
+         {"rlimit_as": 320 * 1024 ** 2}),
         # ---- derived and cross-checks ----
         ("dt_factor_1e100", "u", ["--set", "solver:dt_factor=1e100", "--set", "solver:allow_unstable=.true."], None,
          r"solver:dt_factor = 1e100 is out of range", {}),
