@@ -254,12 +254,17 @@ contains
 
       subroutine summary()
          integer :: status_c(model%contact%nc)
+         character(len=:), allocatable :: asked
          write (output_unit, '(a)') repeat('-', 72)
          write (output_unit, '(a)') ' method              static (CHOLMOD, contact condensed onto Gamma_c, '// &
             'primal-dual active set)'
-         write (output_unit, '(a)') ' increments          '//str(state%step)//trim(merge(' of '//str(nk), &
-            ' for '//str(nk), splits == 0))//' ('//str(st%iterations)//' active-set iterations, '// &
-            str(st%outer_iterations)//' threshold passes)'
+         if (splits == 0) then
+            asked = ' of '//str(nk)
+         else
+            asked = ' for '//str(nk)
+         end if
+         write (output_unit, '(a)') ' increments          '//str(state%step)//asked//' ('//str(st%iterations)// &
+            ' active-set iterations, '//str(st%outer_iterations)//' threshold passes)'
          if (splits > 0) write (output_unit, '(a)') '                     '//str(splits)//' halving(s): '// &
             'an increment that did not settle was taken again in halves (solver:static_splits)'
          write (output_unit, '(a)') ' converged           '//trim(merge('yes', 'NO ', converged))// &
