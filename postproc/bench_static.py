@@ -2,9 +2,13 @@
 """Benchmark of the static engine on the paper scene: prints its figures (docs/static.md).
 
     /usr/bin/python3 postproc/bench_static.py [--levels 4-6] [--repeats 3] [--explicit-repeats 1]
-                                              [--multiplier P1] [--out study/bench_static] [--force]
+                                              [--threads 1] [--multiplier P1] [--out study/bench_static]
+                                              [--force]
 
-For each mesh level k (13 2^k x 3 2^k elements), on one thread (OMP_NUM_THREADS=1):
+For each mesh level k (13 2^k x 3 2^k elements), on one thread (OMP_NUM_THREADS=1) unless --threads
+lists several counts (e.g. 1,2: the static runs are then repeated on each, interleaved, and each row
+gives the speed-up against the first count, medians measured side by side, and the largest
+difference of the end state's displacement to the first count's, max|du| / max|u|, or "bitwise"):
   1. static solve time (contact2d --static: assembly + CHOLMOD factorisation, condensation onto
      Gamma_c, active-set iteration and solves; the file's time_*_seconds attributes) and its wall
      time, medians of --repeats runs;
@@ -35,20 +39,30 @@ PROG = "bench_static.py"
 TARGETS = {5: 0.43, 6: 1.9}     # CHOLMOD with the contact condensed [s]; target within 2x (docs/static.md)
 
 
-def static_times(exe, deck, out, level):
-    """One static run: (solve seconds, wall seconds, factor, condense, increments seconds)."""
+def static_times(exe, deck, out, level, threads=1, displacement=None):
+    """One static run on `threads` OpenMP threads (the BLAS of the factorisation follows them,
+    docs/static.md "Threads"): (solve seconds, wall seconds, factor, condense, increments seconds,
+    CPU seconds). With a list `displacement`, the end state's displacement is appended to it."""
     h5 = out / f"static_k{level}.h5"
     cpu0 = resource.getrusage(resource.RUSAGE_CHILDREN)
-    res = run(exe, deck, h5, {"mesh:level": level, "solver:method": "static", "output:xdmf": False}, threads=1)
+    res = run(exe, deck, h5, {"mesh:level": level, "solver:method": "static", "output:xdmf": False},
+              threads=threads)
     cpu1 = resource.getrusage(resource.RUSAGE_CHILDREN)
     if res.returncode != 0:
         sys.exit(f"static run failed (level {level}): {res.stderr.strip()}")
     with Run(h5) as r:
         parts = [float(r.attrs[k]) for k in ("time_factor_seconds", "time_condense_seconds", "time_solve_seconds")]
         wall = float(r.attrs["wall_seconds"])
+        if displacement is not None:
+            displacement.append(r.read("final/displacement"))
     h5.unlink()
     cpu = (cpu1.ru_utime - cpu0.ru_utime) + (cpu1.ru_stime - cpu0.ru_stime)
     return sum(parts), wall, *parts, cpu
+
+
+def difference(u, ref):
+    """max|u - ref| / max|ref| of two displacement fields, or 0 when they are bitwise equal."""
+    return float(abs(u - ref).max() / abs(ref).max()) if not (u == ref).all() else 0.0
 
 
 def blas_of(exe):
@@ -83,12 +97,22 @@ def main():
     ap.add_argument("--levels", default="4-6", help="mesh levels, e.g. 4-6 (default)")
     ap.add_argument("--repeats", type=int, default=3, help="static runs per level (median)")
     ap.add_argument("--explicit-repeats", type=int, default=1, help="explicit runs per level (0: skip)")
+    ap.add_argument("--threads", default="1",
+                    help="OpenMP thread counts of the static runs, comma-separated (default 1); with several, "
+                         "the speed-up and end-state difference against the first")
     ap.add_argument("--multiplier", default="P1", choices=["P1", "P0"])
     ap.add_argument("--out", default=str(ROOT / "study" / "bench_static"), help="scratch directory")
     ap.add_argument("--exe", help="contact2d executable (default: $CONTACT2D or build/bin/contact2d)")
     ap.add_argument("--force", action="store_true",
                     help="replace static_kK.h5 / explicit_kK.h5 already in --out (refused otherwise, before any run)")
     args = ap.parse_args()
+    try:
+        threads = [int(t) for t in args.threads.split(",")]
+        if not threads or min(threads) < 1:
+            raise ValueError
+    except ValueError:
+        print(f"{PROG}: refused: --threads '{args.threads}': give thread counts >= 1, e.g. 1,2", file=sys.stderr)
+        sys.exit(2)
     exe = find_exe(args.exe)
     deck = ROOT / "inputs" / f"baillet_sassi_2002_{args.multiplier.lower()}.nml"
     levels = levels_or_exit(args.levels, "--levels", PROG)
@@ -96,28 +120,44 @@ def main():
     kinds = [kind for kind, n in (("static", args.repeats), ("explicit", args.explicit_repeats)) if n > 0]
     refuse_existing(PROG, [out / f"{kind}_k{k}.h5" for k in levels for kind in kinds], args.force)
 
-    print(f"static engine benchmark, paper scene {args.multiplier} Tresca, one thread; "
+    on = "one thread" if threads == [1] else f"static runs on {args.threads} thread(s), explicit on one"
+    print(f"static engine benchmark, paper scene {args.multiplier} Tresca, {on}; "
           f"medians of {args.repeats} static / {args.explicit_repeats} explicit run(s)")
     print(f"executable {exe}; BLAS libraries loaded: {blas_of(exe)}")
     print("load average before: %.2f %.2f %.2f (%d cores)" % (*os.getloadavg(), os.cpu_count() or 0))
     header = (f"{'level':>5} {'elements':>9} {'static s':>9} {'(factor':>8} {'condense':>9} {'solve)':>8} "
               f"{'wall s':>8} {'cpu s':>7} {'explicit s':>11} {'steps':>8} {'expl/static':>12}")
+    if len(threads) > 1:
+        header = f"{'threads':>7} " + header + f" {'speed-up':>9} {'max|du|/max|u|':>15}"
     print(header)
     rows = {}
     for level in levels:
-        st, ex = [], []
+        st = {t: [] for t in threads}
+        disp = {t: [] for t in threads}
+        ex = []
         for i in range(max(args.repeats, args.explicit_repeats)):
             if i < args.repeats:
-                st.append(static_times(exe, deck, out, level))
+                for t in threads:
+                    st[t].append(static_times(exe, deck, out, level, t, disp[t] if len(threads) > 1 else None))
             if i < args.explicit_repeats:
                 ex.append(explicit_time(exe, deck, out, level))
-        med = [statistics.median(x[j] for x in st) for j in range(6)]
         ewall = statistics.median(e[0] for e in ex) if ex else float("nan")
         esteps = ex[0][1] if ex else 0
-        rows[level] = med[0]
-        print(f"{level:>5} {39 * 4**level:>9} {med[0]:>9.3f} {med[2]:>8.3f} {med[3]:>9.3f} {med[4]:>8.3f} "
-              f"{med[1]:>8.3f} {med[5]:>7.3f} {ewall:>11.3f} {esteps:>8} {ewall / med[0]:>12.1f}")
-        sys.stdout.flush()
+        base = None
+        for t in threads:
+            med = [statistics.median(x[j] for x in st[t]) for j in range(6)]
+            line = (f"{level:>5} {39 * 4**level:>9} {med[0]:>9.3f} {med[2]:>8.3f} {med[3]:>9.3f} {med[4]:>8.3f} "
+                    f"{med[1]:>8.3f} {med[5]:>7.3f} {ewall:>11.3f} {esteps:>8} {ewall / med[0]:>12.1f}")
+            if len(threads) > 1:
+                if base is None:
+                    base = med[0]
+                diff = max(difference(u, disp[threads[0]][0]) for u in disp[t])
+                line = (f"{t:>7} " + line + f" {base / med[0]:>9.2f} "
+                        + (f"{'bitwise':>15}" if diff == 0 else f"{diff:>15.1e}"))
+            else:
+                rows[level] = med[0]
+            print(line)
+            sys.stdout.flush()
     print("load average after:  %.2f %.2f %.2f" % os.getloadavg())
     for level, ref in TARGETS.items():
         if level in rows:

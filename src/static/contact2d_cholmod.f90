@@ -7,7 +7,7 @@ module contact2d_cholmod
    use contact2d_kinds, only: wp
    implicit none
    private
-   public :: cholmod_t, dense_lauum, dense_potrf, dense_potrs, dense_gesv
+   public :: cholmod_t, dense_lauum, dense_potrf, dense_potrs, dense_gesv, blas_openmp
 
    !> A factorised matrix.
    type :: cholmod_t
@@ -17,6 +17,8 @@ module contact2d_cholmod
       real(wp) :: pivot_ratio = 0      !< min_j L_jj^2 / K_jj
       real(wp) :: lnz = 0              !< nonzeros of L
       real(wp) :: flops = 0            !< floating-point operations of the factorisation
+      integer :: blas_threads = 0      !< OpenBLAS threads of the factorisation: the OpenMP team with
+                                       !< OpenBLAS's OpenMP build, else 1 (docs/static.md "Threads")
    contains
       procedure :: factor => cholmod_factor
       procedure :: trailing => cholmod_trailing
@@ -56,6 +58,13 @@ module contact2d_cholmod
          import :: c_double, c_ptr
          type(c_ptr), value :: handle
       end function c2d_chol_flops
+      integer(c_int) function c2d_chol_blas_threads(handle) bind(c, name='c2d_chol_blas_threads')
+         import :: c_int, c_ptr
+         type(c_ptr), value :: handle
+      end function c2d_chol_blas_threads
+      integer(c_int) function c2d_blas_openmp() bind(c, name='c2d_blas_openmp')
+         import :: c_int
+      end function c2d_blas_openmp
       subroutine c2d_chol_free(handle) bind(c, name='c2d_chol_free')
          import :: c_ptr
          type(c_ptr), intent(inout) :: handle
@@ -125,6 +134,7 @@ contains
          this%pivot_ratio = ratio
          this%lnz = c2d_chol_lnz(this%handle)
          this%flops = c2d_chol_flops(this%handle)
+         this%blas_threads = int(c2d_chol_blas_threads(this%handle))
       case (2)
          errmsg = 'CHOLMOD: the stiffness matrix is not positive definite'
       case default
@@ -152,6 +162,13 @@ contains
       integer, intent(out) :: stat
       stat = c2d_chol_solve(this%handle, b, x)
    end subroutine cholmod_solve
+
+   !> Whether the BLAS is OpenBLAS's OpenMP build, whose threads (the run's OpenMP team) the
+   !> factorisation, solves and dense LAPACK calls get; else they run on one thread
+   !> (docs/static.md "Threads").
+   logical function blas_openmp()
+      blas_openmp = c2d_blas_openmp() /= 0
+   end function blas_openmp
 
    subroutine cholmod_free(this)
       class(cholmod_t), intent(inout) :: this

@@ -16,16 +16,46 @@
 #include <dlfcn.h>
 #include <stddef.h>
 
-/* OpenBLAS, when contact2d is linked against it (CMakeLists.txt, docs/static.md "BLAS"): weak, so
- * that the reference BLAS (no such symbol) links too. The factorisation runs on one BLAS thread:
- * a threaded OpenBLAS must not start threads beside the OpenMP kernels. */
+/* OpenBLAS, when contact2d is linked against it (CMakeLists.txt, docs/static.md "BLAS" and
+ * "Threads"): weak, so that the reference BLAS (no such symbol) links too. libgomp's entry points
+ * are weak as well (this file is compiled without -fopenmp; the Fortran side links libgomp). */
 extern void openblas_set_num_threads(int) __attribute__((weak));
+extern int openblas_get_num_threads(void) __attribute__((weak));
+extern int openblas_get_parallel(void) __attribute__((weak));
+extern int omp_get_max_threads(void) __attribute__((weak));
+extern void omp_set_num_threads(int) __attribute__((weak));
+extern int omp_in_parallel(void) __attribute__((weak));
+
+/* BLAS threads around each call into CHOLMOD or LAPACK (docs/static.md "Threads"). The static
+ * engine calls them from the main thread with no OpenMP kernel running, so the BLAS gets the run's
+ * OpenMP team (omp_get_max_threads: OMP_NUM_THREADS, or the run's own choice) for the call and
+ * one thread after, so that a threaded OpenBLAS never runs threads beside the OpenMP kernels.
+ * OpenBLAS's OpenMP build runs its threads as libgomp's team (no second pool), and its
+ * openblas_set_num_threads also sets the calling thread's OpenMP team (omp_set_num_threads in
+ * its goto_set_num_threads): the run's team is put back after each change. Inside an OpenMP
+ * parallel region (not the case today) the BLAS is left on one thread. Returns the run's team. */
+static int blas_team_begin(void)
+{
+    int team = omp_get_max_threads ? omp_get_max_threads() : 1;
+    if (!openblas_set_num_threads) return team;
+    openblas_set_num_threads(omp_in_parallel && omp_in_parallel() ? 1 : team);
+    if (omp_set_num_threads) omp_set_num_threads(team);
+    return team;
+}
+
+static void blas_team_end(int team)
+{
+    if (!openblas_set_num_threads) return;
+    openblas_set_num_threads(1);
+    if (omp_set_num_threads) omp_set_num_threads(team);
+}
 
 typedef struct {
     cholmod_common common;
     cholmod_factor *L;
     int n;
     int nlast;
+    int blas_threads;   /* OpenBLAS threads during the factorisation (1 without OpenBLAS) */
 } c2d_chol_t;
 
 /* Nested dissection by coordinates (docs/static.md "Ordering"): split a set of groups at the median
@@ -259,7 +289,7 @@ int c2d_chol_factor(int n, long nnz, const int *ti, const int *tj, const double 
     c2d_chol_t *h = calloc(1, sizeof(c2d_chol_t));
     cholmod_triplet *T = NULL;
     cholmod_sparse *A = NULL;
-    int *perm = NULL, nfirst = n - nlast, status = 1;
+    int *perm = NULL, nfirst = n - nlast, status = 1, team;
     long k;
     double *diag = NULL;
 
@@ -268,7 +298,8 @@ int c2d_chol_factor(int n, long nnz, const int *ti, const int *tj, const double 
     if (!h) return 1;
     h->n = n;
     h->nlast = nlast;
-    if (openblas_set_num_threads) openblas_set_num_threads(1);
+    team = blas_team_begin();
+    h->blas_threads = openblas_get_num_threads ? openblas_get_num_threads() : 1;
     cholmod_start(&h->common);
     h->common.print = 0;
     h->common.supernodal = CHOLMOD_SUPERNODAL;
@@ -341,6 +372,7 @@ int c2d_chol_factor(int n, long nnz, const int *ti, const int *tj, const double 
     status = 0;
 
 done:
+    blas_team_end(team);
     free(diag);
     free(perm);
     if (T) cholmod_free_triplet(&T, &h->common);
@@ -384,10 +416,13 @@ int c2d_chol_solve(void *handle, const double *b, double *x)
 {
     c2d_chol_t *h = handle;
     cholmod_dense *B, *X;
+    int team;
     B = cholmod_allocate_dense(h->n, 1, h->n, CHOLMOD_REAL, &h->common);
     if (!B) return 1;
     memcpy(B->x, b, sizeof(double) * h->n);
+    team = blas_team_begin();
     X = cholmod_solve(CHOLMOD_A, h->L, B, &h->common);
+    blas_team_end(team);
     cholmod_free_dense(&B, &h->common);
     if (!X) return 1;
     memcpy(x, X->x, sizeof(double) * h->n);
@@ -406,6 +441,20 @@ double c2d_chol_flops(void *handle)
 {
     c2d_chol_t *h = handle;
     return h->common.fl;
+}
+
+/* OpenBLAS threads the factorisation ran on (docs/static.md "Threads"). */
+int c2d_chol_blas_threads(void *handle)
+{
+    c2d_chol_t *h = handle;
+    return h->blas_threads;
+}
+
+/* 1 when the BLAS is OpenBLAS's OpenMP build (openblas_get_parallel() == 2), whose threads the
+ * static engine's calls get; 0 for a serial or pthreads OpenBLAS or another BLAS (one thread). */
+int c2d_blas_openmp(void)
+{
+    return openblas_get_parallel && openblas_get_parallel() == 2;
 }
 
 void c2d_chol_free(void **handle)
@@ -443,29 +492,41 @@ static void *c2d_lookup(const char *name, void *fallback)
 void c2d_dlauum(const char *uplo, const int *n, double *a, const int *lda, int *info)
 {
     static c2d_lauum_t f = NULL;
+    int team;
     if (!f) f = (c2d_lauum_t)c2d_lookup("dlauum_", (void *)dlauum_);
+    team = blas_team_begin();
     f(uplo, n, a, lda, info, 1);
+    blas_team_end(team);
 }
 
 void c2d_dpotrf(const char *uplo, const int *n, double *a, const int *lda, int *info)
 {
     static c2d_potrf_t f = NULL;
+    int team;
     if (!f) f = (c2d_potrf_t)c2d_lookup("dpotrf_", (void *)dpotrf_);
+    team = blas_team_begin();
     f(uplo, n, a, lda, info, 1);
+    blas_team_end(team);
 }
 
 void c2d_dpotrs(const char *uplo, const int *n, const int *nrhs, const double *a, const int *lda, double *b,
                 const int *ldb, int *info)
 {
     static c2d_potrs_t f = NULL;
+    int team;
     if (!f) f = (c2d_potrs_t)c2d_lookup("dpotrs_", (void *)dpotrs_);
+    team = blas_team_begin();
     f(uplo, n, nrhs, a, lda, b, ldb, info, 1);
+    blas_team_end(team);
 }
 
 void c2d_dgesv(const int *n, const int *nrhs, double *a, const int *lda, int *ipiv, double *b, const int *ldb,
                int *info)
 {
     static c2d_gesv_t f = NULL;
+    int team;
     if (!f) f = (c2d_gesv_t)c2d_lookup("dgesv_", (void *)dgesv_);
+    team = blas_team_begin();
     f(n, nrhs, a, lda, ipiv, b, ldb, info);
+    blas_team_end(team);
 }

@@ -12,6 +12,7 @@ need Gmsh too. Scripts that write into the source tree are run from a copy of po
 temporary tree, so the repository's docs are never touched.
 """
 import hashlib
+import re
 import os
 import shutil
 import subprocess
@@ -297,6 +298,32 @@ class OutFolder(Base):
                 p = self.script("speed_accuracy.py", "--exe", "/bin/false", "--levels", levels, "--out", self.path("o"))
                 self.one_line(p, r"^speed_accuracy\.py: refused: --levels '%s'" % levels)
         self.assertFalse(os.path.exists(self.path("o")))
+
+
+class BenchStaticThreads(Base):
+    """bench_static.py --threads: the static runs on several OpenMP thread counts (the BLAS of the
+    factorisation follows them, docs/static.md "Threads")."""
+
+    def test_bad_thread_counts_refused(self):
+        # the old script had no --threads: argparse's usage and error (two lines)
+        for threads in ("x", "0", "1,", "-2"):
+            with self.subTest(threads=threads):
+                p = self.script("bench_static.py", "--exe", "/bin/false", "--threads=" + threads, "--out", self.path("o"))
+                self.one_line(p, r"^bench_static\.py: refused: --threads '%s'" % re.escape(threads))
+        self.assertFalse(os.path.exists(self.path("o")))
+
+    @unittest.skipUnless(EXE, "set CONTACT2D=path/to/contact2d to run")
+    def test_two_thread_counts_same_solution(self):
+        # one discrete problem, one factorisation: 2 threads change only the order of the BLAS's sums,
+        # so the end state agrees with one thread's to round-off (or bitwise)
+        p = self.script("bench_static.py", "--exe", EXE, "--levels", "1", "--repeats", "1", "--explicit-repeats", "0",
+                        "--threads", "1,2", "--out", self.path("b"))
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        rows = [line.split() for line in p.stdout.splitlines() if line.split()[:2] in (["1", "1"], ["2", "1"])]
+        self.assertEqual([r[0] for r in rows], ["1", "2"], p.stdout)
+        self.assertEqual(rows[0][-1], "bitwise")
+        self.assertTrue(rows[1][-1] == "bitwise" or float(rows[1][-1]) < 1e-11, rows[1])
+        self.assertEqual(os.listdir(self.path("b")), [])            # its runs removed once read
 
 
 class Products(Base):
