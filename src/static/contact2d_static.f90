@@ -57,9 +57,11 @@ module contact2d_static
       integer :: m = 0                     !< nc + nt
       logical :: p0 = .false.
       logical :: scope_contact = .false.   !< tresca_scope = 'contact'
-      logical :: coulomb = .false.         !< Coulomb friction (limits mu F_n,i)
-      logical :: law_fp = .false.          !< limits depend on the forces: fixed point (Coulomb, scope)
-      real(wp), allocatable :: mu_coef(:)  !< Coulomb mu_i per contact node (0 if not Coulomb)
+      !> the law's limits are slope_i F_n,i (law%linear_in_fn: Coulomb): fixed-set solves and
+      !> the semismooth Newton step on the friction problem itself
+      logical :: linear = .false.
+      logical :: law_fp = .false.          !< limits depend on the forces: fixed point (not law%fixed)
+      real(wp), allocatable :: mu_coef(:)  !< slope_i = d limit_i / d F_n,i per contact node (0 unless linear)
       integer, allocatable :: dof(:, :)    !< free-dof index of (component, node), 0 if prescribed
       integer, allocatable :: cnode(:)     !< contact index of each unknown (m)
       real(wp), allocatable :: bdir(:, :)  !< unknown direction (n or t) (2, m)
@@ -139,8 +141,8 @@ contains
             this%p0 = ct%multiplier_name() == 'P0'
             this%scope_contact = ct%friction_in_contact_only
             if (ct%friction) then
-               this%coulomb = ct%law%name() == 'coulomb'
-               this%law_fp = this%coulomb .or. this%scope_contact
+               this%linear = ct%law%linear_in_fn()
+               this%law_fp = .not. ct%law%fixed
             end if
             do i = 1, ct%nc
                n = ct%node(i)
@@ -155,7 +157,7 @@ contains
          end if
          allocate (this%mu_coef(this%nc))
          this%mu_coef = 0
-         if (this%coulomb) this%mu_coef = merge(ct%friction_coefficient, 0.0_wp, ct%slides)
+         if (this%linear) call ct%law%fn_slopes(this%mu_coef)
          this%ncdof = ncd
          this%nfree = nint + ncd
          this%m = this%nc + this%nt
@@ -435,7 +437,7 @@ contains
          ! where the node is out of contact) they depend on the contact forces: a fixed point on
          ! them (docs/static.md "Coulomb friction and tresca_scope = 'contact'")
          allocate (lim(this%nt), lim_new(this%nt), hist(this%nt, max_outer), state_prev(this%m))
-         if (this%coulomb) then
+         if (this%linear) then
             ! warm start: the limits of the last increment's forces (none at the first)
             call law_limits(this, model, fn_last, mu_last, lim)
          else
@@ -456,7 +458,7 @@ contains
                if (pdas_ok) exit
                if (itry == 1) state_first = this%state
             end do
-            if (.not. pdas_ok .and. this%coulomb) then
+            if (.not. pdas_ok .and. this%linear) then
                ! Coulomb: the Tresca subproblem's active-set iteration cycles; a semismooth Newton
                ! iteration on the Coulomb problem itself, from the first try's sets
                this%state = state_first
@@ -490,7 +492,7 @@ contains
             scale = max(absmax(lim_new), absmax(lim), tiny(1.0_wp))
             ! Coulomb: once the sets repeat (or the limits have settled), the fixed point of the
             ! limits with these sets is one linear solve; it is the answer if the sets hold
-            if (this%coulomb .and. (all(this%state == state_prev) .or. &
+            if (this%linear .and. (all(this%state == state_prev) .or. &
                                     absmax(lim_new - lim) <= fp_tol*scale)) then
                call coulomb_exact(this, model, cvec, ok_exact, stat, errmsg)
                if (stat /= 0) return
