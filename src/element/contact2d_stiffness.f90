@@ -97,8 +97,8 @@ contains
             this%nshape = this%nshape + 1
             rel(:, :, this%nshape) = r
             this%shape_of(e) = this%nshape
-            call q1_stiffness(xe, mat%dmat, this%ke(:, :, this%nshape))
-            me(:, this%nshape) = q1_lumped_mass(xe, mat%density)
+            call q1_stiffness(xe, mat%dmat(), this%ke(:, :, this%nshape))
+            me(:, this%nshape) = q1_lumped_mass(xe, mat%density())
          end if
          ! the lumped mass of the element's shape, as its stiffness: every element of a shape
          ! the same masses to the bit (docs/performance.md "Masses by shape")

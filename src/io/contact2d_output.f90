@@ -260,7 +260,7 @@ contains
 
       allocate (stress(3, model%mesh%nel))
       do e = 1, model%mesh%nel
-         stress(:, e) = q1_stress_average(model%mesh%element_coordinates(e), model%material%dmat, &
+         stress(:, e) = q1_stress_average(model%mesh%element_coordinates(e), model%material%dmat(), &
                                           [(solver%u(:, model%mesh%conn(a, e)), a=1, 4)])
       end do
       reaction = (solver%fint - solver%fext)*(1 - model%load%free)
