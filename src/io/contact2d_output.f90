@@ -10,7 +10,6 @@ module contact2d_output
    use contact2d_deck, only: deck_t
    use contact2d_model, only: model_t
    use contact2d_explicit, only: explicit_t
-   use contact2d_q1, only: q1_stress_average
    use contact2d_friction, only: parameter_name_len
    use contact2d_strings, only: str
    use contact2d_sys, only: sys_write_file, sys_strerror
@@ -260,8 +259,9 @@ contains
 
       allocate (stress(3, model%mesh%nel))
       do e = 1, model%mesh%nel
-         stress(:, e) = q1_stress_average(model%mesh%element_coordinates(e), model%material%dmat(), &
-                                          [(solver%u(:, model%mesh%conn(a, e)), a=1, 4)])
+         stress(:, e) = model%stiff%element%stress_average(model%mesh%element_coordinates(e), &
+                                                           model%material%dmat(), &
+                                                           [(solver%u(:, model%mesh%conn(a, e)), a=1, 4)])
       end do
       reaction = (solver%fint - solver%fext)*(1 - model%load%free)
       g = this%file%group(root, 'final')
