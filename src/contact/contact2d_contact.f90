@@ -61,6 +61,9 @@ module contact2d_contact
       !> set once and P1 finds F_n in the same pass as the rest of the step
       logical :: limits_fixed = .false.
       real(wp) :: friction_coefficient = 0  !< Coulomb mu [-] (0 unless friction = 'coulomb')
+      !> the law makes a node with F_n,i > 0 carry friction (law%depends_on_fn: Coulomb with
+      !> mu > 0), so with P0 it counts as touching even where its own dual cell is open
+      logical :: fn_touches = .false.
       logical :: friction_in_contact_only = .false.   !< tresca_scope = 'contact'
       real(wp), allocatable :: normal(:, :)   !< n_i, outward normal of the body (2, nc)
       real(wp), allocatable :: tangent(:, :)  !< t_i = (-n2, n1) (2, nc)
@@ -272,6 +275,7 @@ contains
       if (.not. this%friction) this%slip_limit = 0
       this%limits_fixed = .not. this%friction
       if (this%friction) this%limits_fixed = this%law%fixed
+      if (this%friction) this%fn_touches = this%law%depends_on_fn()
       ! a zero limit means slip where there is no friction or the tangential dof is free
       this%rec(rec_free0, :) = merge(1.0_wp, 0.0_wp, this%slides .or. .not. this%friction)
 
@@ -483,14 +487,14 @@ contains
       real(wp), intent(in) :: dt, rc
       logical, intent(in) :: cells
       call finish_nodes(this%nc, this%node, this%rec, this%fn, this%slip_limit, this%mu, this%ft, this%stuck, &
-                        this%dtil, this%last_status, this%friction, this%friction_coefficient > 0, cells, &
+                        this%dtil, this%last_status, this%friction, this%fn_touches, cells, &
                         this%limits_fixed .and. this%multiplier == multiplier_p1 .and. .not. this%penalty, &
                         u, v, unew, fc, dt, rc, this%stick_increment_max, this%penetration_max, this%status_changes, &
                         this%normal_work, this%friction_dissipation, this%normal_total, this%tangential_total)
    end subroutine finish_pass
 
    !> The loop of finish_pass on plain arrays. rec(:, i): the per-node constants (rec_* indices).
-   subroutine finish_nodes(nc, node, rec, fnv, limv, mu, ftv, stuckv, dtil, last_status, friction, coulomb, cells, &
+   subroutine finish_nodes(nc, node, rec, fnv, limv, mu, ftv, stuckv, dtil, last_status, friction, fn_touches, cells, &
                            p1_here, u, v, unew, fc, dt, rc, sim_max, pen_max, status_changes, normal_work, &
                            friction_dissipation, &
                            normal_total, tangential_total)
@@ -501,7 +505,8 @@ contains
       logical, intent(inout) :: stuckv(nc)
       real(wp), intent(inout) :: dtil(nc)
       integer, intent(inout) :: last_status(nc)
-      logical, intent(in) :: friction, coulomb, cells
+      logical, intent(in) :: friction, cells
+      logical, intent(in) :: fn_touches   !< contact_t%fn_touches
       logical, intent(in) :: p1_here   !< find the P1 normal force here (normal_p1's expression)
       real(wp), intent(in) :: u(2, *), v(2, *)
       real(wp), intent(inout) :: unew(2, *), fc(2, *)
@@ -566,7 +571,7 @@ contains
          ! dual cell; a zero limit is slip where rec_free0 says the node slides freely
          if (cells) then
             dtil(i) = d
-            touching = mu(i) > 0 .or. (coulomb .and. fn > 0)
+            touching = mu(i) > 0 .or. (fn_touches .and. fn > 0)
          else
             pen = max(pen, d)
             touching = fn > 0
@@ -600,10 +605,10 @@ contains
       integer, intent(in) :: i
       logical :: touching
       if (this%multiplier == multiplier_p0 .and. .not. this%penalty) then
-         ! Coulomb (mu > 0) acts on the nodal F_n,i = (D^T mu_n)_i, which a neighbouring closed
-         ! cell makes positive at a node whose own cell is open: such a node carries friction and
-         ! is reported touching (docs/friction.md section 1)
-         touching = this%mu(i) > 0 .or. (this%friction_coefficient > 0 .and. this%fn(i) > 0)
+         ! a law driven by F_n (Coulomb, mu > 0) acts on the nodal F_n,i = (D^T mu_n)_i, which a
+         ! neighbouring closed cell makes positive at a node whose own cell is open: such a node
+         ! carries friction and is reported touching (docs/friction.md section 1)
+         touching = this%mu(i) > 0 .or. (this%fn_touches .and. this%fn(i) > 0)
       else
          touching = this%fn(i) > 0
       end if

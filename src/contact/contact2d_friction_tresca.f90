@@ -3,7 +3,7 @@
 !> A member of the friction-law seam (contact2d_friction, docs/friction.md section 2).
 module contact2d_friction_tresca
    use contact2d_kinds, only: wp
-   use contact2d_friction, only: friction_law_t
+   use contact2d_friction, only: friction_law_t, parameter_name_len
    implicit none
    private
    public :: tresca_law_t
@@ -15,6 +15,10 @@ module contact2d_friction_tresca
    contains
       procedure :: init => tresca_law_init
       procedure :: limits => tresca_law_limits
+      procedure :: linear_in_fn => tresca_law_no
+      procedure :: fn_slopes => tresca_law_fn_slopes
+      procedure :: depends_on_fn => tresca_law_no
+      procedure :: parameters => tresca_law_parameters
    end type tresca_law_t
 
 contains
@@ -47,4 +51,27 @@ contains
          limit = this%bound
       end if
    end subroutine tresca_law_limits
+
+   !> Tresca's limit s_i w_i does not depend on the normal force (tresca_scope = 'contact' only
+   !> switches it off out of contact): neither linear in F_n nor driven by it.
+   pure logical function tresca_law_no(this) result(no)
+      class(tresca_law_t), intent(in) :: this
+      no = .false.
+   end function tresca_law_no
+
+   !> d limit_i / d F_n,i = 0.
+   pure subroutine tresca_law_fn_slopes(this, slope)
+      class(tresca_law_t), intent(in) :: this
+      real(wp), intent(out) :: slope(:)
+      if (size(slope) /= size(this%bound)) error stop 'tresca_law_fn_slopes: slope and bound differ in size'
+      slope = 0
+   end subroutine tresca_law_fn_slopes
+
+   !> None: the thresholds s_i are per-node data, written as /contact/threshold.
+   pure subroutine tresca_law_parameters(this, names, values)
+      class(tresca_law_t), intent(in) :: this
+      character(len=parameter_name_len), allocatable, intent(out) :: names(:)
+      real(wp), allocatable, intent(out) :: values(:)
+      allocate (names(0), values(0))
+   end subroutine tresca_law_parameters
 end module contact2d_friction_tresca

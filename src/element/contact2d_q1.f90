@@ -2,13 +2,15 @@
 !>
 !> Local nodes are counter-clockwise, 1 = (-1,-1), 2 = (1,-1), 3 = (1,1), 4 = (-1,1) in the
 !> reference square; local dofs are ordered (x1, y1, x2, y2, x3, y3, x4, y4).
-!> Every routine here is pure and works on one element: the time loop never calls them.
+!> Every routine here works on one element: the time loop never calls them. q1_element_t is the
+!> member of the element seam (contact2d_element); the q1_* routines are its kernels.
 module contact2d_q1
    use contact2d_kinds, only: wp
+   use contact2d_element, only: element_t
    implicit none
    private
    public :: q1_stiffness, q1_lumped_mass, q1_area, q1_stress_average, q1_max_frequency_squared
-   public :: q1_gradients
+   public :: q1_gradients, q1_element_t
 
    real(wp), parameter :: g = 0.577350269189625764509148780502_wp   ! 1/sqrt(3)
    !> Gauss points of the 2x2 rule (weights are all 1).
@@ -18,7 +20,81 @@ module contact2d_q1
    real(wp), parameter :: node_xi(4) = [-1.0_wp, 1.0_wp, 1.0_wp, -1.0_wp]
    real(wp), parameter :: node_eta(4) = [-1.0_wp, -1.0_wp, 1.0_wp, 1.0_wp]
 
+   !> The Q1 element with 2 x 2 Gauss points, the member of the element seam.
+   type, extends(element_t) :: q1_element_t
+   contains
+      procedure :: nodes => q1_element_nodes
+      procedure :: gauss_points => q1_element_nodes   ! four nodes, four Gauss points
+      procedure :: gauss => q1_element_gauss
+      procedure :: bmat => q1_element_bmat
+      procedure :: stiffness => q1_element_stiffness
+      procedure :: lumped_mass => q1_element_lumped_mass
+      procedure :: max_frequency_squared => q1_element_max_frequency_squared
+      procedure :: stress_average => q1_element_stress_average
+   end type q1_element_t
+
 contains
+
+   !> Four nodes (and four Gauss points).
+   pure integer function q1_element_nodes(this) result(n)
+      class(q1_element_t), intent(in) :: this
+      n = 4
+   end function q1_element_nodes
+
+   !> q1_gradients at Gauss point q of the 2 x 2 rule (weights 1).
+   pure subroutine q1_element_gauss(this, xe, q, n, dndx, detj)
+      class(q1_element_t), intent(in) :: this
+      real(wp), intent(in) :: xe(:, :)
+      integer, intent(in) :: q
+      real(wp), intent(out) :: n(:), dndx(:, :), detj
+      real(wp) :: n4(4), d4(2, 4)
+      call q1_gradients(xe, gauss_xi(q), gauss_eta(q), n4, d4, detj)
+      n = n4
+      dndx = d4
+   end subroutine q1_element_gauss
+
+   !> b_matrix of the gradients.
+   pure subroutine q1_element_bmat(this, dndx, b)
+      class(q1_element_t), intent(in) :: this
+      real(wp), intent(in) :: dndx(:, :)
+      real(wp), intent(out) :: b(:, :)
+      b = b_matrix(dndx)
+   end subroutine q1_element_bmat
+
+   !> q1_stiffness.
+   pure subroutine q1_element_stiffness(this, xe, dmat, ke)
+      class(q1_element_t), intent(in) :: this
+      real(wp), intent(in) :: xe(:, :), dmat(3, 3)
+      real(wp), intent(out) :: ke(:, :)
+      real(wp) :: k8(8, 8)
+      call q1_stiffness(xe, dmat, k8)
+      ke = k8
+   end subroutine q1_element_stiffness
+
+   !> q1_lumped_mass.
+   pure subroutine q1_element_lumped_mass(this, xe, density, me)
+      class(q1_element_t), intent(in) :: this
+      real(wp), intent(in) :: xe(:, :), density
+      real(wp), intent(out) :: me(:)
+      me = q1_lumped_mass(xe, density)
+   end subroutine q1_element_lumped_mass
+
+   !> q1_max_frequency_squared.
+   subroutine q1_element_max_frequency_squared(this, ke, me, omega2, stat)
+      class(q1_element_t), intent(in) :: this
+      real(wp), intent(in) :: ke(:, :), me(:)
+      real(wp), intent(out) :: omega2
+      integer, intent(out) :: stat
+      call q1_max_frequency_squared(ke, me, omega2, stat)
+   end subroutine q1_element_max_frequency_squared
+
+   !> q1_stress_average.
+   pure function q1_element_stress_average(this, xe, dmat, ue) result(sig)
+      class(q1_element_t), intent(in) :: this
+      real(wp), intent(in) :: xe(:, :), dmat(3, 3), ue(:)
+      real(wp) :: sig(3)
+      sig = q1_stress_average(xe, dmat, ue)
+   end function q1_element_stress_average
 
    !> Shape-function values and physical gradients at (xi, eta); det J is returned in detj.
    pure subroutine q1_gradients(xe, xi, eta, n, dndx, detj)

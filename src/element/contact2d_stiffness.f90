@@ -5,7 +5,8 @@ module contact2d_stiffness
    use contact2d_kinds, only: wp
    use contact2d_mesh, only: mesh_t, node_elements
    use contact2d_material, only: material_t
-   use contact2d_q1, only: q1_stiffness, q1_lumped_mass, q1_max_frequency_squared
+   use contact2d_element, only: element_t
+   use contact2d_element_factory, only: element_create
    implicit none
    private
    public :: stiffness_t
@@ -35,6 +36,8 @@ module contact2d_stiffness
       integer, allocatable :: conn(:, :)       !< copy of the connectivity (4, nel)
       real(wp), allocatable :: mass(:)         !< lumped nodal mass (nnode) [t]
       real(wp) :: omega2_element = 0           !< largest element omega^2 [1/s^2]
+      !> the element (the element seam): its matrices and masses here, the stresses in the writer
+      class(element_t), allocatable :: element
       ! rows of K in block-CSR form (2 x 2 blocks): every node of a general mesh, the boundary
       ! nodes of a structured one
       integer, allocatable :: row_node(:)      !< node of each block row
@@ -68,8 +71,9 @@ contains
       integer :: e, s, first, info
       character(len=64) :: buf
 
-      stat = 0
-      errmsg = ''
+      ! the mesh's elements have four nodes: Q1 (docs/architecture.md, "Seams")
+      call element_create('q1', this%element, stat, errmsg)
+      if (stat /= 0) return
       allocate (this%shape_of(mesh%nel), this%mass(mesh%nnode), rel(2, 4, mesh%nel))
       allocate (this%ke(8, 8, mesh%nel), me(4, mesh%nel))
       this%conn = mesh%conn
@@ -97,8 +101,8 @@ contains
             this%nshape = this%nshape + 1
             rel(:, :, this%nshape) = r
             this%shape_of(e) = this%nshape
-            call q1_stiffness(xe, mat%dmat, this%ke(:, :, this%nshape))
-            me(:, this%nshape) = q1_lumped_mass(xe, mat%density)
+            call this%element%stiffness(xe, mat%dmat(), this%ke(:, :, this%nshape))
+            call this%element%lumped_mass(xe, mat%density(), me(:, this%nshape))
          end if
          ! the lumped mass of the element's shape, as its stiffness: every element of a shape
          ! the same masses to the bit (docs/performance.md "Masses by shape")
@@ -108,7 +112,7 @@ contains
       ! element bound on omega_max: one eigenproblem per shape with that shape's lumped mass
       this%omega2_element = 0
       do s = 1, this%nshape
-         call q1_max_frequency_squared(this%ke(:, :, s), me(:, s), omega2, info)
+         call this%element%max_frequency_squared(this%ke(:, :, s), me(:, s), omega2, info)
          if (info /= 0) then
             write (buf, '(i0)') info
             stat = 2

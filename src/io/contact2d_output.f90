@@ -10,7 +10,7 @@ module contact2d_output
    use contact2d_deck, only: deck_t
    use contact2d_model, only: model_t
    use contact2d_explicit, only: explicit_t
-   use contact2d_q1, only: q1_stress_average
+   use contact2d_friction, only: parameter_name_len
    use contact2d_strings, only: str
    use contact2d_sys, only: sys_write_file, sys_strerror
    use contact2d_outpath, only: sidecar_name
@@ -74,7 +74,8 @@ contains
       character(len=*), intent(in), optional :: sidecar, target
       integer(hid_t) :: root, g
       integer :: k
-      real(wp), allocatable :: mass(:, :)
+      real(wp), allocatable :: mass(:, :), pvalue(:)
+      character(len=parameter_name_len), allocatable :: pname(:)
 
       this%xdmf = deck%output%xdmf
       this%xmf_path = sidecar_name(path)
@@ -130,7 +131,11 @@ contains
             call this%file%dataset(g, 'normal', c%normal, '1')
             if (c%friction) then
                call this%file%attr(g, 'friction', c%law%name())
-               if (c%law%name() == 'coulomb') call this%file%attr(g, 'friction_coefficient', c%friction_coefficient)
+               ! the law's own parameters (Coulomb: friction_coefficient), whatever the law
+               call c%law%parameters(pname, pvalue)
+               do k = 1, size(pname)
+                  call this%file%attr(g, trim(pname(k)), pvalue(k))
+               end do
             else
                call this%file%attr(g, 'friction', 'frictionless')
             end if
@@ -254,8 +259,9 @@ contains
 
       allocate (stress(3, model%mesh%nel))
       do e = 1, model%mesh%nel
-         stress(:, e) = q1_stress_average(model%mesh%element_coordinates(e), model%material%dmat, &
-                                          [(solver%u(:, model%mesh%conn(a, e)), a=1, 4)])
+         stress(:, e) = model%stiff%element%stress_average(model%mesh%element_coordinates(e), &
+                                                           model%material%dmat(), &
+                                                           [(solver%u(:, model%mesh%conn(a, e)), a=1, 4)])
       end do
       reaction = (solver%fint - solver%fext)*(1 - model%load%free)
       g = this%file%group(root, 'final')

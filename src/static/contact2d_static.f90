@@ -14,7 +14,8 @@
 !>    stick and slip sets repeat (converged) or an earlier set repeats (cycling: not converged).
 !> 4. u = K^-1 (f + contact forces) and the KKT residuals are checked on it.
 !> With tresca_scope = 'contact' the thresholds depend on the contact state: an outer fixed point
-!> on them, reported as not converged if it cycles.
+!> on them, reported as not converged if it cycles. A law whose limits are linear in F_n
+!> (Coulomb) also gets the fixed-set solves of the submodule contact2d_static_friction.
 module contact2d_static
    use contact2d_kinds, only: wp, i8
    use contact2d_strings, only: str
@@ -57,9 +58,11 @@ module contact2d_static
       integer :: m = 0                     !< nc + nt
       logical :: p0 = .false.
       logical :: scope_contact = .false.   !< tresca_scope = 'contact'
-      logical :: coulomb = .false.         !< Coulomb friction (limits mu F_n,i)
-      logical :: law_fp = .false.          !< limits depend on the forces: fixed point (Coulomb, scope)
-      real(wp), allocatable :: mu_coef(:)  !< Coulomb mu_i per contact node (0 if not Coulomb)
+      !> the law's limits are slope_i F_n,i (law%linear_in_fn: Coulomb): fixed-set solves and
+      !> the semismooth Newton step on the friction problem itself
+      logical :: linear = .false.
+      logical :: law_fp = .false.          !< limits depend on the forces: fixed point (not law%fixed)
+      real(wp), allocatable :: mu_coef(:)  !< slope_i = d limit_i / d F_n,i per contact node (0 unless linear)
       integer, allocatable :: dof(:, :)    !< free-dof index of (component, node), 0 if prescribed
       integer, allocatable :: cnode(:)     !< contact index of each unknown (m)
       real(wp), allocatable :: bdir(:, :)  !< unknown direction (n or t) (2, m)
@@ -89,6 +92,54 @@ module contact2d_static
       procedure :: restore => static_restore
       procedure :: free => static_free
    end type static_t
+
+   interface
+      !> Semismooth Newton iteration on the friction problem with limits linear in F_n, from the
+      !> current sets (contact2d_static_friction). ok: every condition holds, lambda and the nodal
+      !> forces set; not ok: cycling or max_iter reached, lambda unchanged.
+      module subroutine linear_newton(this, model, cvec, nit, ok, stat, errmsg)
+         type(static_t), intent(inout) :: this
+         type(model_t), intent(in) :: model
+         real(wp), intent(in) :: cvec(:)
+         integer, intent(out) :: nit
+         logical, intent(out) :: ok
+         integer, intent(out) :: stat
+         character(len=:), allocatable, intent(out) :: errmsg
+      end subroutine linear_newton
+
+      !> The exact solution for the current sets with limits linear in F_n, kept (ok) only if the
+      !> sets it implies are the same (contact2d_static_friction).
+      module subroutine linear_exact(this, model, cvec, ok, stat, errmsg)
+         type(static_t), intent(inout) :: this
+         type(model_t), intent(in) :: model
+         real(wp), intent(in) :: cvec(:)
+         logical, intent(out) :: ok
+         integer, intent(out) :: stat
+         character(len=:), allocatable, intent(out) :: errmsg
+      end subroutine linear_exact
+
+      !> y = D x for the contact chain (D symmetric tridiagonal, SPEC section 3).
+      module subroutine d_apply(model, x, y)
+         type(model_t), intent(in) :: model
+         real(wp), intent(in) :: x(:)
+         real(wp), intent(out) :: y(:)
+      end subroutine d_apply
+
+      !> The friction law's limits of the tangential unknowns for the nodal normal forces fn and
+      !> the P0 cell multipliers mu (contact2d_static_friction).
+      module subroutine law_limits(this, model, fn, mu, limk)
+         type(static_t), intent(in) :: this
+         type(model_t), intent(in) :: model
+         real(wp), intent(in) :: fn(:), mu(:)
+         real(wp), intent(out) :: limk(:)
+      end subroutine law_limits
+
+      !> Nodal forces from lambda: F_n = T lambda_n (mu for P0), F_t per node.
+      module subroutine nodal_forces(this, model)
+         type(static_t), intent(inout) :: this
+         type(model_t), intent(in) :: model
+      end subroutine nodal_forces
+   end interface
 
 contains
 
@@ -139,8 +190,8 @@ contains
             this%p0 = ct%multiplier_name() == 'P0'
             this%scope_contact = ct%friction_in_contact_only
             if (ct%friction) then
-               this%coulomb = ct%law%name() == 'coulomb'
-               this%law_fp = this%coulomb .or. this%scope_contact
+               this%linear = ct%law%linear_in_fn()
+               this%law_fp = .not. ct%law%fixed
             end if
             do i = 1, ct%nc
                n = ct%node(i)
@@ -155,7 +206,7 @@ contains
          end if
          allocate (this%mu_coef(this%nc))
          this%mu_coef = 0
-         if (this%coulomb) this%mu_coef = merge(ct%friction_coefficient, 0.0_wp, ct%slides)
+         if (this%linear) call ct%law%fn_slopes(this%mu_coef)
          this%ncdof = ncd
          this%nfree = nint + ncd
          this%m = this%nc + this%nt
@@ -336,20 +387,6 @@ contains
       errmsg = ''
    end subroutine condense
 
-   !> y = D x for the contact chain (D symmetric tridiagonal, SPEC section 3).
-   subroutine d_apply(model, x, y)
-      type(model_t), intent(in) :: model
-      real(wp), intent(in) :: x(:)
-      real(wp), intent(out) :: y(:)
-      integer :: i, nc
-      nc = size(x)
-      y = model%contact%dd*x
-      do i = 1, nc - 1
-         y(i) = y(i) + model%contact%dl(i)*x(i + 1)
-         y(i + 1) = y(i + 1) + model%contact%dl(i)*x(i)
-      end do
-   end subroutine d_apply
-
    !> One load increment: the loads and prescribed values of time t, friction acting on the
    !> tangential displacement since the last increment. converged = .false. when the PDAS or the
    !> threshold fixed point cycles or runs out of iterations (the state is then the last iterate).
@@ -435,7 +472,7 @@ contains
          ! where the node is out of contact) they depend on the contact forces: a fixed point on
          ! them (docs/static.md "Coulomb friction and tresca_scope = 'contact'")
          allocate (lim(this%nt), lim_new(this%nt), hist(this%nt, max_outer), state_prev(this%m))
-         if (this%coulomb) then
+         if (this%linear) then
             ! warm start: the limits of the last increment's forces (none at the first)
             call law_limits(this, model, fn_last, mu_last, lim)
          else
@@ -456,11 +493,11 @@ contains
                if (pdas_ok) exit
                if (itry == 1) state_first = this%state
             end do
-            if (.not. pdas_ok .and. this%coulomb) then
+            if (.not. pdas_ok .and. this%linear) then
                ! Coulomb: the Tresca subproblem's active-set iteration cycles; a semismooth Newton
                ! iteration on the Coulomb problem itself, from the first try's sets
                this%state = state_first
-               call coulomb_newton(this, model, cvec, nit, pdas_ok, stat, errmsg)
+               call linear_newton(this, model, cvec, nit, pdas_ok, stat, errmsg)
                this%iterations = this%iterations + nit
                if (stat /= 0) return
                if (pdas_ok) then
@@ -490,9 +527,9 @@ contains
             scale = max(absmax(lim_new), absmax(lim), tiny(1.0_wp))
             ! Coulomb: once the sets repeat (or the limits have settled), the fixed point of the
             ! limits with these sets is one linear solve; it is the answer if the sets hold
-            if (this%coulomb .and. (all(this%state == state_prev) .or. &
+            if (this%linear .and. (all(this%state == state_prev) .or. &
                                     absmax(lim_new - lim) <= fp_tol*scale)) then
-               call coulomb_exact(this, model, cvec, ok_exact, stat, errmsg)
+               call linear_exact(this, model, cvec, ok_exact, stat, errmsg)
                if (stat /= 0) return
                if (ok_exact) then
                   done = .true.
@@ -568,199 +605,6 @@ contains
       end do
       call model%stiff%apply(this%u, this%fint)
    end subroutine displacement
-
-   !> The friction law's limits (docs/friction.md section 2) of the tangential unknowns for the
-   !> nodal normal forces fn and the P0 cell multipliers mu (the contact measure: fn for P1, mu
-   !> for P0, as contact2d_contact passes it).
-   subroutine law_limits(this, model, fn, mu, limk)
-      type(static_t), intent(in) :: this
-      type(model_t), intent(in) :: model
-      real(wp), intent(in) :: fn(:), mu(:)
-      real(wp), intent(out) :: limk(:)
-      real(wp) :: limnode(this%nc)
-      integer :: k
-      if (.not. this%law_fp) then
-         limk = this%limit
-         return
-      end if
-      if (this%p0) then
-         call model%contact%law%limits(fn, mu, limnode)
-      else
-         call model%contact%law%limits(fn, fn, limnode)
-      end if
-      do k = 1, this%nt
-         limk(k) = limnode(this%cnode(this%nc + k))
-      end do
-   end subroutine law_limits
-
-   !> The friction limits implied by the multipliers lam (normal part first): law_limits on the
-   !> nodal normal forces (P0: F_n = D^T mu_n) and the normal multipliers themselves.
-   subroutine multiplier_limits(this, model, lam, limk)
-      type(static_t), intent(in) :: this
-      type(model_t), intent(in) :: model
-      real(wp), intent(in) :: lam(:)
-      real(wp), intent(out) :: limk(:)
-      real(wp) :: fnode(this%nc)
-      if (this%p0) then
-         call d_apply(model, lam(1:this%nc), fnode)
-         call law_limits(this, model, fnode, lam(1:this%nc), limk)
-      else
-         call law_limits(this, model, lam(1:this%nc), lam(1:this%nc), limk)
-      end if
-   end subroutine multiplier_limits
-
-   !> Coulomb with the sets fixed (normal active/inactive, stick, slip +-, no friction): the
-   !> limits mu_i F_n,i are linear in the normal multipliers, so the condensed problem
-   !> A y + lambda = rhs with y_J = 0 (active, stick), lambda = 0 (inactive, no friction) and
-   !> lambda_r = +-mu_i (T lambda_n)_i (slip; T = I for P1, D for P0) is one linear system in
-   !> (y_K, lambda_J), solved with LAPACK dgesv (it is not symmetric). info /= 0: singular.
-   subroutine coulomb_sets_solve(this, model, rhs, lam, y, info)
-      type(static_t), intent(in) :: this
-      type(model_t), intent(in) :: model
-      real(wp), intent(in) :: rhs(:)
-      real(wp), intent(out) :: lam(:), y(:)
-      integer, intent(out) :: info
-      real(wp), allocatable :: mat(:, :), z(:, :)
-      real(wp) :: fnode(this%nc), sg, tij
-      integer, allocatable :: ipiv(:)
-      integer :: k, r, i, j, m, nc
-      m = this%m
-      nc = this%nc
-      allocate (mat(m, m), z(m, 1), ipiv(m))
-      mat = 0
-      do k = 1, m
-         if (any(this%state(k) == [1, 3])) then
-            mat(k, k) = 1
-         else
-            mat(:, k) = this%a(:, k)
-         end if
-      end do
-      do r = nc + 1, m
-         if (abs(this%state(r)) /= 2) cycle
-         i = this%cnode(r)
-         sg = sign(1.0_wp, real(this%state(r), wp))
-         do j = max(i - 1, 1), min(i + 1, nc)
-            if (this%state(j) /= 1) cycle
-            if (i == j) then
-               tij = 1
-               if (this%p0) tij = model%contact%dd(i)
-            else if (this%p0) then
-               tij = model%contact%dl(min(i, j))
-            else
-               tij = 0
-            end if
-            mat(r, j) = mat(r, j) + sg*this%mu_coef(i)*tij
-         end do
-      end do
-      z(:, 1) = rhs
-      call dense_gesv(m, 1, mat, m, ipiv, z, m, info)
-      y = 0
-      lam = 0
-      if (info /= 0) return
-      do k = 1, m
-         if (any(this%state(k) == [1, 3])) then
-            lam(k) = z(k, 1)
-         else
-            y(k) = z(k, 1)
-         end if
-      end do
-      if (this%p0) then
-         call d_apply(model, lam(1:nc), fnode)
-      else
-         fnode = lam(1:nc)
-      end if
-      do r = nc + 1, m
-         if (abs(this%state(r)) /= 2) cycle
-         lam(r) = sign(1.0_wp, real(this%state(r), wp))*this%mu_coef(this%cnode(r))*fnode(this%cnode(r))
-      end do
-   end subroutine coulomb_sets_solve
-
-   !> Semismooth Newton (active-set) iteration on the Coulomb problem itself: with the current
-   !> sets, the exact fixed-set solution (coulomb_sets_solve), then the sets it implies with the
-   !> limits mu F_n of its own forces; until the sets repeat (ok: every condition holds) or an
-   !> earlier set comes back or max_iter is reached (not ok; lambda unchanged).
-   subroutine coulomb_newton(this, model, cvec, nit, ok, stat, errmsg)
-      type(static_t), intent(inout) :: this
-      type(model_t), intent(in) :: model
-      real(wp), intent(in) :: cvec(:)
-      integer, intent(out) :: nit
-      logical, intent(out) :: ok
-      integer, intent(out) :: stat
-      character(len=:), allocatable, intent(out) :: errmsg
-      real(wp) :: lam(this%m), y(this%m), limk(this%nt)
-      integer :: new_state(this%m), info, it, j
-      integer, allocatable :: hist(:, :)
-      stat = 0
-      errmsg = ''
-      ok = .false.
-      nit = 0
-      allocate (hist(this%m, this%max_iter))
-      do it = 1, this%max_iter
-         nit = it
-         hist(:, it) = this%state
-         call coulomb_sets_solve(this, model, cvec, lam, y, info)
-         if (info /= 0) return
-         call multiplier_limits(this, model, lam, limk)
-         call classify(this%a, this%nc, lam, y, limk, ct_tries(1), new_state)
-         if (debug) print '(a,i4,a,6i6)', 'ssn ', it, ' active/inactive/stick/slip+/slip-/free', &
-            count(new_state == 1), count(new_state == 0), count(new_state == 3), count(new_state == 2), &
-            count(new_state == -2), count(new_state == 4)
-         if (all(new_state == this%state)) then
-            ok = .true.
-            this%lambda = lam
-            call nodal_forces(this, model)
-            return
-         end if
-         do j = 1, it
-            if (all(new_state == hist(:, j))) return   ! cycling
-         end do
-         this%state = new_state
-      end do
-   end subroutine coulomb_newton
-
-   !> The exact Coulomb solution for the current sets (coulomb_sets_solve on A (y - y0) +
-   !> lambda = 0), kept (ok) only if the sets it implies are the same, the limits being
-   !> mu F_n of its own forces: then every condition of the condensed problem holds.
-   subroutine coulomb_exact(this, model, cvec, ok, stat, errmsg)
-      type(static_t), intent(inout) :: this
-      type(model_t), intent(in) :: model
-      real(wp), intent(in) :: cvec(:)
-      logical, intent(out) :: ok
-      integer, intent(out) :: stat
-      character(len=:), allocatable, intent(out) :: errmsg
-      real(wp) :: lam(this%m), y(this%m), limk(this%nt)
-      integer :: check(this%m), info
-      stat = 0
-      errmsg = ''
-      ok = .false.
-      call coulomb_sets_solve(this, model, cvec, lam, y, info)
-      if (info /= 0) return   ! singular with these sets: go on with the fixed point
-      call multiplier_limits(this, model, lam, limk)
-      call classify(this%a, this%nc, lam, y, limk, ct_tries(1), check)
-      ok = all(check == this%state)
-      if (ok) then
-         this%lambda = lam
-         call nodal_forces(this, model)
-      end if
-   end subroutine coulomb_exact
-
-   !> Nodal forces from lambda: F_n = T lambda_n (mu for P0), F_t per node.
-   subroutine nodal_forces(this, model)
-      type(static_t), intent(inout) :: this
-      type(model_t), intent(in) :: model
-      integer :: r
-      if (this%p0) then
-         this%mu = this%lambda(1:this%nc)
-         call d_apply(model, this%mu, this%fn)
-      else
-         this%fn = this%lambda(1:this%nc)
-         this%mu = 0
-      end if
-      this%ft = 0
-      do r = this%nc + 1, this%m
-         this%ft(this%cnode(r)) = this%lambda(r)
-      end do
-   end subroutine nodal_forces
 
    !> The KKT residuals of the state (kkt_values), from the full displacement u and u_prev, the
    !> displacement at the start of the increment.

@@ -21,6 +21,7 @@ module contact2d_explicit
    use contact2d_contact, only: contact_t
    use contact2d_sys, only: sys_signal_pending
    use contact2d_sweep, only: sweep_t
+   use contact2d_layout, only: layout_t
    implicit none
    private
    public :: explicit_t, damping_none, damping_given, damping_auto
@@ -43,6 +44,9 @@ module contact2d_explicit
    !> State and settings of the explicit integrator.
    type :: explicit_t
       integer :: nnode = 0
+      !> the nodes this process owns (local 1 .. layout%nowned, contact2d_layout): the energy and
+      !> residual reductions run over them only (one process: every node, the same loops)
+      type(layout_t) :: layout
       real(wp) :: dt = 0                   !< time step [s]
       real(wp) :: alpha = 0                !< current mass-proportional damping [1/s]
       real(wp) :: alpha_next = 0           !< damping from the next step on (automatic damping)
@@ -149,6 +153,7 @@ contains
 
       nnode = size(stiff%mass)
       this%nnode = nnode
+      call this%layout%init_single(nnode)
       this%dt = dt
       this%damping = damping
       this%alpha = merge(alpha, 0.0_wp, damping == damping_given)
@@ -214,7 +219,7 @@ contains
       ! set-up, outside the step loop: the dofs that change after the sweep
       if (.not. allocated(this%sdof) .or. this%s_ncontact /= merge(contact%nc, 0, contact%active)) &
          call special_dofs(this, load, contact)
-      if (this%vsum_stale) this%vsum = mass_sum(2*this%nnode, this%mdof, this%v)
+      if (this%vsum_stale) this%vsum = mass_sum(2*this%layout%nowned, this%mdof, this%v)
       this%vsum_stale = .false.
       ! v^(n-1/2) at the listed dofs; special_correct keeps it up to date from here on
       call special_gather(this%s_run, this%s_short, this%sdof, this%v, this%s_vold)
@@ -297,12 +302,13 @@ contains
       ! stopped early after a step that was not full: K u^n and the strain energy of that step
       if (.not. full) then
          call stiff%apply(this%unew, this%fint)
-         this%strain = 0.5_wp*sum(this%u*this%fint)
+         this%strain = 0.5_wp*sum(this%u(:, 1:this%layout%nowned)*this%fint(:, 1:this%layout%nowned))
       end if
       ! the physical strain energy at t_n, once per call (not per step): after the swap unew
       ! holds u^n and fint = K u^n at every dof (the last step of a call is full); not after a
       ! blow-up (the values may overflow, which traps in Debug builds, and mean nothing)
-      if (.not. this%blown_up) this%strain_step = 0.5_wp*sum(this%unew*this%fint)
+      if (.not. this%blown_up) &
+         this%strain_step = 0.5_wp*sum(this%unew(:, 1:this%layout%nowned)*this%fint(:, 1:this%layout%nowned))
    end subroutine explicit_advance
 
    !> The dofs whose u~ is changed after the sweep: loaded, prescribed and contact-node dofs,
@@ -636,7 +642,7 @@ contains
       end do
       call pres_negate(size(this%pres_dofs), this%pres_dofs, this%kdu, this%f_mark)
       ! du_f^T K du_f and du_f^T M du_f by blocks; the marks move to (u, f_int)
-      call rayleigh_blocks(2*this%nnode, this%nblock, this%u, this%fint, this%rmask, this%mdof, &
+      call rayleigh_blocks(2*this%layout%nowned, this%nblock, this%u, this%fint, this%rmask, this%mdof, &
                            this%u_mark, this%f_mark, this%partial)
       num = 0
       den = 0
@@ -714,10 +720,10 @@ contains
       if (allocated(this%s_other)) then
          ! the step loop writes f_ext and f_c at the listed dofs only: elsewhere r = -f_int on a
          ! free dof (the prescribed ones are listed), one array read instead of four
-         call residual_others(2*this%nnode, this%nblock, this%fint, this%s_other, rfree)
+         call residual_others(2*this%layout%nowned, this%nblock, this%fint, this%s_other, rfree)
          call residual_listed(size(this%sdof), this%sdof, this%fext, this%fint, this%fc, load%free, rfree, scale)
       else
-         call residual_blocks(2*this%nnode, this%nblock, this%fext, this%fint, this%fc, load%free, rfree, scale)
+         call residual_blocks(2*this%layout%nowned, this%nblock, this%fext, this%fint, this%fc, load%free, rfree, scale)
       end if
       if (present(scale_out)) scale_out = scale
       if (present(floor)) scale = max(scale, floor)
