@@ -56,6 +56,7 @@ run again.
 """
 import argparse
 import csv
+import math
 import os
 import subprocess
 import sys
@@ -125,7 +126,7 @@ def main():
                                                                   "without --figures)")
     ap.add_argument("--figures", help="folder of speed_accuracy.csv and .png (default --out), e.g. docs/figures")
     ap.add_argument("--no-getfem", action="store_true")
-    ap.add_argument("--hertz-levels", default="0-2", help="levels of hertz_static and hertz_calculix (default 0-2)")
+    ap.add_argument("--hertz-levels", default="0-2", help="levels of hertz_static (default 0-2)")
     ap.add_argument("--hertz-explicit-levels", default="0-1",
                     help="levels of the explicit Hertz routes (default 0-1)")
     ap.add_argument("--calculix-levels", default="0-1", help="levels of the CalculiX routes (default 0-1)")
@@ -148,8 +149,10 @@ def main():
         penalties = [float(v) for v in args.penalties.split(",")]
     except ValueError:
         penalties = []
-    if not penalties or len(penalties) > 4 or not all(k > 0 for k in penalties):
-        sys.exit(f"speed_accuracy.py: --penalties {args.penalties}: one to four slopes > 0 [MPa/mm], e.g. 1e8,1e9")
+    if not penalties or len(penalties) > 4 or not all(math.isfinite(k) and k > 0 for k in penalties):
+        print(f"speed_accuracy.py: refused: --penalties '{args.penalties}': one to four finite slopes > 0 "
+              "[MPa/mm], comma-separated, e.g. 1e8,1e9", file=sys.stderr)
+        sys.exit(2)
     ccx = None if args.no_hertz or args.no_calculix else calculix.available()
     if ccx is None and not args.no_hertz and not args.no_calculix:
         print("CalculiX: ccx not installed (Debian: calculix-ccx), the calculix route is left out", flush=True)
@@ -225,7 +228,8 @@ def main():
     # of the same settings, with its own timing)
     command = "/usr/bin/python3 postproc/speed_accuracy.py " + " ".join(a for a in sys.argv[1:]
                                                                         if a not in ("--force", "--reuse"))
-    ccx_note = ("CalculiX: not drawn (--no-calculix)" if args.no_calculix else
+    ccx_note = ("CalculiX: not drawn (--no-hertz)" if args.no_hertz else
+                "CalculiX: not drawn (--no-calculix)" if args.no_calculix else
                 "CalculiX: not drawn (no ccx installed)" if ccx is None else
                 f"CalculiX {ccx_version()}: penalty " + " and ".join(slope_text(k) for k in penalties) + " MPa/mm")
     plot(rows, figs / "speed_accuracy.png", args.force, command, load, ccx_note, penalties)

@@ -13,6 +13,7 @@ temporary tree, so the repository's docs are never touched.
 """
 import hashlib
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -297,6 +298,16 @@ class OutFolder(Base):
             with self.subTest(levels=levels):
                 p = self.script("speed_accuracy.py", "--exe", "/bin/false", "--levels", levels, "--out", self.path("o"))
                 self.one_line(p, r"^speed_accuracy\.py: refused: --levels '%s'" % levels)
+        self.assertFalse(os.path.exists(self.path("o")))
+
+    def test_speed_accuracy_penalties(self):
+        # CalculiX's penalty slopes: a slope must be a finite positive number (pressure = slope x
+        # penetration); refused before any run, nothing written
+        for penalties in ("x", "0", "1e8,-1e9", "inf", "1e8,1e9,1e10,1e11,1e12"):
+            with self.subTest(penalties=penalties):
+                p = self.script("speed_accuracy.py", "--exe", "/bin/false", "--penalties", penalties,
+                                "--out", self.path("o"))
+                self.one_line(p, r"^speed_accuracy\.py: refused: --penalties '%s'" % re.escape(penalties))
         self.assertFalse(os.path.exists(self.path("o")))
 
 
