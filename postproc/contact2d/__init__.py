@@ -15,6 +15,8 @@ Modules:
     cattaneo_mindlin  Cattaneo-Mindlin partial slip closed forms; mindlin measures a run
     impact            the exact 1D wave solution of the impact bar and its run measures
     getfem_reference, getfem_coulomb   the GetFEM static and quasi-static Coulomb references
+    calculix          CalculiX (ccx) on the Hertz half-disk: input from a run, solve, read back
+    chart             the speed-accuracy table's columns and measures
 
 Scripts in postproc/ import it (Python searches a script's own folder first); elsewhere set
 PYTHONPATH=<repository>/postproc. `python3 -m contact2d <command>` lists the commands.

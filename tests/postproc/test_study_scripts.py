@@ -14,6 +14,7 @@ temporary tree, so the repository's docs are never touched.
 import hashlib
 import re
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -172,7 +173,8 @@ class Reuse(Base):
     def test_speed_accuracy_reuses_only_a_reference_of_the_same_problem(self):
         import h5py
         out = self.path("sa")
-        args = ["--exe", EXE, "--levels", "0", "--reference-dir", self.path("none"), "--out", out, "--force"]
+        args = ["--exe", EXE, "--levels", "0", "--reference-dir", self.path("none"), "--out", out, "--force",
+                "--no-hertz"]
         p = self.script("speed_accuracy.py", *args)
         self.assertEqual(p.returncode, 0, p.stderr[-2000:])
         gf1, gf0 = (os.path.join(out, "getfem_%s_k0.h5" % m) for m in ("p1", "p0"))
@@ -299,6 +301,16 @@ class OutFolder(Base):
                 self.one_line(p, r"^speed_accuracy\.py: refused: --levels '%s'" % levels)
         self.assertFalse(os.path.exists(self.path("o")))
 
+    def test_speed_accuracy_penalties(self):
+        # CalculiX's penalty slopes: a slope must be a finite positive number (pressure = slope x
+        # penetration); refused before any run, nothing written
+        for penalties in ("x", "0", "1e8,-1e9", "inf", "1e8,1e9,1e10,1e11,1e12"):
+            with self.subTest(penalties=penalties):
+                p = self.script("speed_accuracy.py", "--exe", "/bin/false", "--penalties", penalties,
+                                "--out", self.path("o"))
+                self.one_line(p, r"^speed_accuracy\.py: refused: --penalties '%s'" % re.escape(penalties))
+        self.assertFalse(os.path.exists(self.path("o")))
+
 
 class BenchStaticThreads(Base):
     """bench_static.py --threads: the static runs on several OpenMP thread counts (the BLAS of the
@@ -364,8 +376,8 @@ class Products(Base):
         # studies died with an OutputRefused traceback
         for script, args, name in (("paper_study.py", ["--levels", "0"], "convergence.csv"),
                                    ("paper_study.py", ["--levels", "0"], "fig3_contact_stress.png"),
-                                   ("speed_accuracy.py", ["--levels", "0", "--no-getfem", "--reference-dir",
-                                                          self.path("none")], "speed_accuracy.png"),
+                                   ("speed_accuracy.py", ["--levels", "0", "--no-getfem", "--no-hertz",
+                                                          "--reference-dir", self.path("none")], "speed_accuracy.png"),
                                    ("stability_sweep.py", ["--methods", "elastic", "--ratios", "0.5:0.5:0.1",
                                                            "--level", "0", "--time", "3e-6"], "stability.png")):
             with self.subTest(script=script, product=name):
