@@ -9,6 +9,8 @@ module contact2d_driver
    use contact2d_deck, only: deck_t, deck_read, deck_blame, edge_load_cfg_t
    use contact2d_model, only: model_t, model_build, beside
    use contact2d_explicit, only: explicit_t
+   use contact2d_state, only: state_t
+   use contact2d_timestep, only: timestep_fallback
    use contact2d_output, only: output_t
    use contact2d_outpath, only: outpath_t
    use contact2d_sys, only: sys_signals_install, sys_signal_pending, sys_strerror, sys_exit_now
@@ -40,11 +42,12 @@ contains
       type(deck_t) :: deck
       type(model_t) :: model
       type(explicit_t), target :: solver
+      type(state_t), target :: state
       type(output_t) :: out
-      character(len=:), allocatable :: errmsg, status
+      character(len=:), allocatable :: errmsg
       integer :: stat, i, nstep, isnap
       integer(i8) :: clock0, clock1, clock_last_progress, rate, t_steps, t_output, tick, snap_step
-      real(wp) :: residual, t_load_end, omega2_power, timings(4), wall, kin_ratio
+      real(wp) :: residual, t_load_end, timings(4), wall, kin_ratio
       real(wp) :: scale_peak, strain_peak, scale_now
       logical :: converged, done, interactive, sampled
       real(wp), allocatable :: extra(:, :)
@@ -153,29 +156,9 @@ contains
          call opath%abandon(keep_partial)
          return
       end if
-      omega2_power = 0
-      if (deck%solver%power_iterations > 0) then
-         if (model%contact%penalty) then
-            ! the penalty springs k_p w_i on the normal dofs of the contact nodes (all closed)
-            allocate (extra(2, model%mesh%nnode))
-            extra = 0
-            do i = 1, model%contact%nc
-               extra(:, model%contact%node(i)) = model%contact%penalty_stiffness*model%contact%weight(i)* &
-                                                  model%contact%normal(:, i)**2
-            end do
-            omega2_power = model%stiff%power_omega2(model%load%free, deck%solver%power_iterations, extra)
-         else
-            omega2_power = model%stiff%power_omega2(model%load%free, deck%solver%power_iterations)
-         end if
-      end if
-      ! solver:dt_limit = 'power': dt from the power-iteration estimate of the true
-      ! limit, with the growing-mode guard; never below the element-bound step
-      if (deck%solver%dt_limit == 'power' .and. deck%solver%dt == 0 .and. omega2_power > 0) then
-         model%dt = max(model%dt, deck%solver%dt_factor*2/sqrt(omega2_power))
-      end if
       dt_initial = model%dt
       fallback_step = -1
-      call print_time_step(model, omega2_power, deck%solver%power_iterations)
+      call print_time_step(model, deck%solver%power_iterations)
       if (model%added_mass > 0) then
          write (output_unit, '(a)') 'mass scaling: '//sci(model%added_mass)//' t added at '//str(model%scaled_nodes)// &
             ' node(s) ('//sci(model%added_mass/model%body_mass)//' of the body mass) for a stable step of '// &
@@ -187,17 +170,19 @@ contains
 
       call solver%init(model%stiff, model%load, model%dt, model%damping, deck%solver%alpha, &
                        deck%solver%damping_interval)
-      ! the guard watches only a step taken from the power estimate (never a dt the user gave)
-      solver%guard = deck%solver%dt_limit == 'power' .and. deck%solver%dt == 0 .and. &
-                     model%dt > deck%solver%dt_factor*model%dt_critical*(1 + 1.0e-12_wp)
+      ! the guard watches only a step taken from the power estimate (contact2d_timestep)
+      solver%guard = model%dt_guarded
       solver%guard_after = model%load%end_time()
       if (any(deck%initial%velocity /= 0)) call initial_velocity_apply(solver, model%load%free, deck%initial%velocity)
+      ! the run's state: the engine's fields by pointer, a copy of the model's contact operator
+      call state%init(model%contact, model%dt)
+      call state_from_explicit(state, solver)
       ! the lock, then the temporary file; SIGINT/SIGTERM from now on end the run cleanly
       call opath%acquire(stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
       stat = sys_signals_install()
       if (stat /= 0) call fail(2, 'cannot install the SIGINT/SIGTERM handler: '//sys_strerror(stat))
-      call out%open(opath%partial, .false., deck, model, stat, errmsg, sidecar=opath%xmf_partial, &
+      call out%open(opath%partial, .false., deck, model, state, stat, errmsg, sidecar=opath%xmf_partial, &
                     target=opath%target)
       if (stat /= 0) call fail_now(2, errmsg, .false.)   ! nothing readable yet: no file kept
       keep_partial = .true.
@@ -206,15 +191,15 @@ contains
       call out%file%attr(out%file%id, 'dt_limit', trim(deck%solver%dt_limit))
       call out%file%attr(out%file%id, 'added_mass', model%added_mass)
       call out%file%attr(out%file%id, 'body_mass', model%body_mass)
-      if (omega2_power > 0) then
-         call out%file%attr(out%file%id, 'omega_max_power', sqrt(omega2_power))
-         call out%file%attr(out%file%id, 'dt_stable_estimate', 2/sqrt(omega2_power))
+      if (model%omega2_power > 0) then
+         call out%file%attr(out%file%id, 'omega_max_power', sqrt(model%omega2_power))
+         call out%file%attr(out%file%id, 'dt_stable_estimate', 2/sqrt(model%omega2_power))
       end if
       ! the kind of run and the energy put in at t = 0 (docs/output.md)
       call out%file%attr(out%file%id, 'dynamic', merge(1, 0, deck%dynamic))
       call out%file%attr(out%file%id, 'convergence_test', merge(1, 0, deck%convergence_test))
       call out%file%attr(out%file%id, 'initial_kinetic_energy', solver%initial_kinetic)
-      call out%sample(solver, model, 0.0_wp)
+      call out%sample(state, 0.0_wp)
       call check_output(out)
 
       call tuner%init(model%stiff%nnode >= omp_min_nodes)
@@ -228,13 +213,13 @@ contains
       t_load_end = model%load%end_time()
       converged = .false.
       done = .false.
-      status = 'not converged'
-      if (.not. deck%convergence_test) status = trim(merge('dynamic            ', 'no convergence test', deck%dynamic))
+      state%status = 'not converged'
+      if (.not. deck%convergence_test) state%status = trim(merge('dynamic            ', 'no convergence test', deck%dynamic))
       residual = huge(1.0_wp)
       scale_peak = 0
       strain_peak = 0
       isnap = 1
-      snap_step = next_snapshot(deck, model%dt, isnap, 0_i8, 0.0_wp)
+      snap_step = next_snapshot(deck, state%dt, isnap, 0_i8, 0.0_wp)
       associate (hist => int(deck%output%history_interval, i8), check => int(deck%solver%check_interval, i8))
          do while (.not. done)
             ! the chunk ends at the next history sample, convergence check, snapshot, max_steps
@@ -243,40 +228,41 @@ contains
                             int(deck%solver%max_steps, i8) - solver%step, snap_step - solver%step, &
                             end_step(solver, deck%solver%t_end) - solver%step))
             call system_clock(tick)
-            call solver%advance(model%stiff, model%load, model%contact, nstep)
+            call solver%advance(model%stiff, model%load, state%contact, nstep)
             call system_clock(clock1)
             t_steps = t_steps + (clock1 - tick)
             call tuner%update(real(clock1 - tick, wp)/rate, nstep)
             if (solver%growing) then
                ! a growing mode: back to the element bound from the next step on
-               model%dt = deck%solver%dt_factor*model%dt_critical
-               call solver%set_dt(model%dt)
+               state%dt = timestep_fallback(deck, model%dt_critical)
+               call solver%set_dt(state%dt)
                solver%guard = .false.
                fallback_step = solver%step
                write (error_unit, '(a)') program_name//': warning: a growing mode at step '//str(solver%step)// &
-                  ' with dt = '//sci(dt_initial)//' s; the element-bound step '//sci(model%dt)//' s from here on'
-               snap_step = next_snapshot(deck, model%dt, isnap, solver%step, solver%time)
+                  ' with dt = '//sci(dt_initial)//' s; the element-bound step '//sci(state%dt)//' s from here on'
+               snap_step = next_snapshot(deck, state%dt, isnap, solver%step, solver%time)
             end if
             sampled = .false.
             if (solver%step == snap_step) then
-               call out%snapshot(solver, model)
+               call state_from_explicit(state, solver)
+               call out%snapshot(model, state)
                call check_output(out)
                ! snapshot times that fall in one step share its snapshot (docs/deck.md)
                isnap = isnap + 1
                do while (isnap <= deck%output%nsnapshot)
-                  if (deck%output%snapshot_times(isnap) > solver%time + 1.0e-9_wp*model%dt) exit
+                  if (deck%output%snapshot_times(isnap) > solver%time + 1.0e-9_wp*state%dt) exit
                   isnap = isnap + 1
                end do
-               snap_step = next_snapshot(deck, model%dt, isnap, solver%step, solver%time)
+               snap_step = next_snapshot(deck, state%dt, isnap, solver%step, solver%time)
             end if
             if (sys_signal_pending() /= 0) then
-               status = 'interrupted'
+               state%status = 'interrupted'
                done = .true.
             else if (solver%blown_up) then
-               status = 'blow-up'
+               state%status = 'blow-up'
                done = .true.
-            else if (model%contact%stat /= 0) then
-               status = 'contact solver failure'
+            else if (state%contact%stat /= 0) then
+               state%status = 'contact solver failure'
                done = .true.
             else
                if (deck%convergence_test .and. mod(solver%step, check) == 0 .and. solver%time >= t_load_end) then
@@ -287,7 +273,7 @@ contains
                   kin_ratio = merge(solver%kinetic/strain_peak, solver%kinetic, strain_peak > 0)
                   if (residual < deck%solver%tol_residual .and. kin_ratio < deck%solver%tol_kinetic) then
                      converged = .true.
-                     status = 'converged'
+                     state%status = 'converged'
                      done = .true.
                   end if
                end if
@@ -300,7 +286,8 @@ contains
                residual = solver%residual(model%load, scale_peak, scale_now)
                scale_peak = max(scale_peak, scale_now)
                strain_peak = max(strain_peak, solver%strain)
-               call out%sample(solver, model, residual)
+               call state_from_explicit(state, solver)
+               call out%sample(state, residual)
                call check_output(out)
                sampled = .true.
                call system_clock(clock1)
@@ -316,7 +303,7 @@ contains
 
       ! the step-loop time includes the contact time, reported on its own as well
       timings(2) = real(t_steps, wp)/rate
-      timings(3) = real(model%contact%clock_ticks, wp)/rate
+      timings(3) = real(state%contact%clock_ticks, wp)/rate
       timings(4) = real(t_output, wp)/rate
       ! solver:compare_static: energy distance of the end state to the static solution
       if (deck%solver%compare_static) then
@@ -338,21 +325,22 @@ contains
       call out%file%attr(out%file%id, 'dt_fallback_step', int(fallback_step))
       ! the small-strain, small-displacement range of a run that reached its end (docs/output.md):
       ! measured on the end state, stored now, said after the summary
-      if (.not. any(status == [character(len=24) :: 'interrupted', 'blow-up', 'contact solver failure'])) then
+      if (.not. any(state%status == [character(len=24) :: 'interrupted', 'blow-up', 'contact solver failure'])) then
          call validity%measure(model%mesh, solver%u)
          call validity%write(out%file)
       end if
-      call out%finish(model, solver, converged, status, wall, timings, stat, errmsg)
+      state%converged = converged
+      call state_from_explicit(state, solver)
+      call out%finish(model, state, wall, timings, stat, errmsg)
       if (stat /= 0) call fail_write(errmsg//'; what was written so far is in '//opath%partial)
       ! complete: move the files into place (every end: converged or not, blow-up, interrupted;
       ! but a run that did not reach its end does not replace an existing result, docs/output.md)
-      ended = .not. any(status == [character(len=24) :: 'interrupted', 'blow-up', 'contact solver failure'])
+      ended = .not. any(state%status == [character(len=24) :: 'interrupted', 'blow-up', 'contact solver failure'])
       dest = opath%destination(ended)
       call opath%publish(stat, errmsg, ended)
       if (stat /= 0) call fail(2, errmsg)
       keep_partial = dest /= opath%target   ! kept at its temporary name: fail() below must not remove it
-      call summary(model, deck, solver, dest, converged, status, residual, wall, timings, dt_initial, fallback_step, &
-                   snap_missed)
+      call summary(model, deck, state, solver, dest, residual, wall, timings, dt_initial, fallback_step, snap_missed)
       call validity%report()
       if (tuner%active) write (output_unit, '(a)') ' threads             auto: '//str(tuner%nmax)//' on '// &
          fixed(100*real(tuner%steps(2), wp)/max(1.0_wp, real(sum(tuner%steps), wp)), 1)//' % of the steps, 1 on the rest ('// &
@@ -364,7 +352,7 @@ contains
          write (output_unit, '(a)') ' static distance     '//sci(static_dist)//' (energy norm ||u - u_static||_K / '// &
             '||u_static||_K'//trim(merge('); static NOT converged', ')                      ', .not. static_converged))
       end if
-      if (status == 'interrupted') then
+      if (state%status == 'interrupted') then
          stat = sys_signal_pending()
          write (error_unit, '(a)') program_name//': interrupted by '//trim(merge('SIGINT ', 'SIGTERM', stat == 2))// &
             ' at step '//str(solver%step)//' (t = '//sci(solver%time)//' s); '//dest// &
@@ -374,7 +362,7 @@ contains
          ! a signal after the steps (during solver:compare_static): the run's file is complete
          stat = sys_signal_pending()
          write (error_unit, '(a)') program_name//': interrupted by '//trim(merge('SIGINT ', 'SIGTERM', stat == 2))// &
-            ' after the steps; '//cli%output//" holds the finished run (status '"//status//"')"// &
+            ' after the steps; '//cli%output//" holds the finished run (status '"//state%status//"')"// &
             trim(merge(', without the static comparison', '                               ', &
                        deck%solver%compare_static .and. static_dist == huge(1.0_wp)))
          stop 128 + stat, quiet=.true.
@@ -382,14 +370,36 @@ contains
       if (solver%blown_up) then
          call fail(2, 'the run blew up at step '//str(solver%step)//' (t = '//sci(solver%time)// &
                    ' s): kinetic energy '//sci(solver%kinetic)//' mJ exceeds 1000 x the work put in ('// &
-                   sci(solver%work_in)//' mJ) with dt = '//fixed(model%dt/model%dt_critical, 3)// &
+                   sci(solver%work_in)//' mJ) with dt = '//fixed(state%dt/model%dt_critical, 3)// &
                    ' dt_critical; '//dest//' holds the history up to the failure'//kept_note(dest))
       end if
-      if (model%contact%stat /= 0) then
-         call fail(2, model%contact%errmsg//' at step '//str(solver%step)//'; '//dest// &
+      if (state%contact%stat /= 0) then
+         call fail(2, state%contact%errmsg//' at step '//str(solver%step)//'; '//dest// &
                    ' holds the history up to the failure'//kept_note(dest))
       end if
    end subroutine driver_main
+
+   !> Point the state at the explicit engine's fields and copy its scalars (between chunks of
+   !> steps: the engine swaps u and u~ by pointer, so the views are set again each time).
+   subroutine state_from_explicit(state, solver)
+      type(state_t), intent(inout) :: state
+      type(explicit_t), intent(in), target :: solver
+      state%u => solver%u
+      state%v => solver%v
+      state%fint => solver%fint
+      state%fext => solver%fext
+      state%step = solver%step
+      state%time = solver%time
+      state%dt = solver%dt
+      state%alpha = solver%alpha
+      state%kinetic = solver%kinetic
+      state%strain = solver%strain
+      state%kinetic_step = solver%kinetic_step
+      state%strain_step = solver%strain_step
+      state%external_work = solver%external_work
+      state%damping_dissipation = solver%damping_dissipation
+      state%initial_kinetic = solver%initial_kinetic
+   end subroutine state_from_explicit
 
    !> The step at which the run reaches t_end: the first step after the current one whose time
    !> t_k = time0 + (k - step0) dt (as the solver forms it) is >= t_end (1 - 1e-12), the test
@@ -566,9 +576,8 @@ contains
       end subroutine first_ramp
    end function ramp_warning
 
-   subroutine print_time_step(model, omega2_power, iterations)
+   subroutine print_time_step(model, iterations)
       type(model_t), intent(in) :: model
-      real(wp), intent(in) :: omega2_power
       integer, intent(in) :: iterations
       character(len=:), allocatable :: bound
       bound = 'element bound 2/omega_max'
@@ -576,11 +585,13 @@ contains
       if (model%contact%penalty) bound = bound//trim(merge(' and ', ' with', model%scaled_nodes > 0))//' the penalty springs'
       write (output_unit, '(a)') 'dt = '//sci(model%dt)//' s = '//fixed(model%dt/model%dt_critical, 3)// &
          ' dt_critical ('//bound//' = '//sci(model%dt_critical)//' s)'
+      associate (omega2_power => model%omega2_power)
       if (omega2_power > 0) then
          write (output_unit, '(a)') 'power iteration ('//str(iterations)//' its): omega_max >= '// &
             sci(sqrt(omega2_power))//' 1/s, true stable limit <= '//sci(2/sqrt(omega2_power))//' s = '// &
             fixed(2/sqrt(omega2_power)/model%dt_critical, 3)//' dt_critical (the element bound is conservative)'
       end if
+      end associate
    end subroutine print_time_step
 
    subroutine progress_line(solver, deck, residual, elapsed)
@@ -598,12 +609,11 @@ contains
    end subroutine progress_line
 
    !> Contact lines of the summary: status counts, extent, pressure sign, penetration.
-   subroutine contact_summary(model, solver)
-      type(model_t), intent(in) :: model
-      type(explicit_t), intent(in) :: solver
-      integer :: status(model%contact%nc), info, nneg
-      real(wp) :: pressure(model%contact%nc), shear(model%contact%nc)
-      associate (c => model%contact)
+   subroutine contact_summary(state)
+      type(state_t), intent(in) :: state
+      integer :: status(state%contact%nc), info, nneg
+      real(wp) :: pressure(state%contact%nc), shear(state%contact%nc)
+      associate (c => state%contact)
          call c%status(status)
          call c%fields(pressure, shear, info)
          call summary_contact_status(c, status)
@@ -615,25 +625,24 @@ contains
          else
             write (output_unit, '(a)') '; nowhere negative'
          end if
-         write (output_unit, '(a)') ' penetration         '//sci(c%penetration(solver%u))//' mm (max'// &
+         write (output_unit, '(a)') ' penetration         '//sci(c%penetration(state%u))//' mm (max'// &
             trim(merge(' per dual cell)', ' per node)     ', c%multiplier_name() == 'P0'))
       end associate
    end subroutine contact_summary
 
-   subroutine summary(model, deck, solver, path, converged, status, residual, wall, timings, dt_initial, fallback_step, &
-                      snap_missed)
+   subroutine summary(model, deck, state, solver, path, residual, wall, timings, dt_initial, fallback_step, snap_missed)
       type(model_t), intent(in) :: model
       type(deck_t), intent(in) :: deck
+      type(state_t), intent(in) :: state
       type(explicit_t), intent(in) :: solver
-      character(len=*), intent(in) :: path, status
-      logical, intent(in) :: converged
+      character(len=*), intent(in) :: path
       real(wp), intent(in) :: residual, wall, timings(4), dt_initial
       integer(i8), intent(in) :: fallback_step
       real(wp), intent(in) :: snap_missed(:)   !< output:snapshot_times after the end [s]
       character(len=:), allocatable :: conv, times
       real(wp) :: rate
       integer :: k
-      associate (c => model%contact)
+      associate (c => state%contact, converged => state%converged, status => state%status)
          if (converged) then
             conv = 'yes (relative residual '//sci(residual)//' < '//sci(deck%solver%tol_residual)//')'
          else if (.not. deck%convergence_test) then
@@ -654,10 +663,10 @@ contains
          rate = real(solver%step, wp)*model%mesh%nel/max(timings(2), 1.0e-9_wp)
          write (output_unit, '(a)') repeat('-', 72)
          write (output_unit, '(a)') ' steps               '//str(solver%step)//'   (t = '//sci(solver%time)//' s)'
-         write (output_unit, '(a)') ' dt / dt_critical    '//fixed(model%dt/model%dt_critical, 4)//'   (dt_limit = '// &
+         write (output_unit, '(a)') ' dt / dt_critical    '//fixed(state%dt/model%dt_critical, 4)//'   (dt_limit = '// &
             trim(deck%solver%dt_limit)//')'
          if (fallback_step >= 0) write (output_unit, '(a)') ' growing mode        at step '//str(fallback_step)// &
-            ': dt '//sci(dt_initial)//' s -> '//sci(model%dt)//' s (element bound)'
+            ': dt '//sci(dt_initial)//' s -> '//sci(state%dt)//' s (element bound)'
          if (model%added_mass > 0) write (output_unit, '(a)') ' added mass          '//sci(model%added_mass)// &
             ' t at '//str(model%scaled_nodes)//' node(s) = '//sci(model%added_mass/model%body_mass)//' x body mass'
          if (deck%dynamic) write (output_unit, '(a)') ' run                 dynamic: initial velocity ('// &
@@ -674,9 +683,9 @@ contains
                ' s (the run ended at t = '//sci(solver%time)//' s); '// &
                str(deck%output%nsnapshot - size(snap_missed))//' of '//str(deck%output%nsnapshot)//' written'
          end if
-         write (output_unit, '(a)') ' energy balance      '//sci(solver%balance_error(c%friction_dissipation, c%normal_work))// &
+         write (output_unit, '(a)') ' energy balance      '//sci(state%balance_error())// &
             ' (relative error; W_ext = '//sci(solver%external_work)//' mJ)'
-         if (c%active) call contact_summary(model, solver)
+         if (c%active) call contact_summary(state)
          write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s (set-up '//fixed(timings(1), 3)// &
             ', steps '//fixed(timings(2), 3)//', contact '//fixed(timings(3), 3)//', output '//fixed(timings(4), 3)//')'
          write (output_unit, '(a)') ' element-steps / s   '//sci(rate)

@@ -10,7 +10,7 @@ module contact2d_static_run
    use contact2d_contact, only: contact_t
    use contact2d_deck, only: deck_t
    use contact2d_model, only: model_t
-   use contact2d_explicit, only: explicit_t, damping_none
+   use contact2d_state, only: state_t
    use contact2d_output, only: output_t
    use contact2d_static, only: static_t, static_saved_t
    use contact2d_kkt, only: kkt_names
@@ -32,7 +32,7 @@ contains
    subroutine static_run(deck, model, path, overwrite, clock0, code, errmsg, sidecar, target, written, opened, &
                          replacing, ended)
       type(deck_t), intent(in) :: deck
-      type(model_t), intent(inout) :: model
+      type(model_t), intent(in) :: model
       character(len=*), intent(in) :: path
       logical, intent(in) :: overwrite
       integer(i8), intent(in) :: clock0   !< system_clock at program start
@@ -43,7 +43,7 @@ contains
       logical, intent(in), optional :: replacing
       logical, intent(out), optional :: ended
       type(static_t) :: st
-      type(explicit_t), target :: state
+      type(state_t), target :: state   !< at rest after each increment: v = 0, dt = 0
       type(output_t) :: out
       type(validity_t) :: validity
       integer :: k, nk, stat, i, splits
@@ -73,17 +73,17 @@ contains
       nk = deck%solver%static_increments
       st%max_iter = deck%solver%static_iterations
       t_end = model%load%end_time()
-      model%dt = 0
       write (output_unit, '(a)') 'static engine: '//str(st%nfree)//' free dofs, '//str(st%ncdof)// &
          ' condensed onto Gamma_c ('//str(st%nc)//' normal, '//str(st%nt)//' tangential unknowns); CHOLMOD factor '// &
          str(nint(st%chol%lnz))//' nonzeros, '//sci(st%chol%flops)//' flops, smallest pivot / diagonal '// &
          sci(st%chol%pivot_ratio)//'; '//str(nk)//' increment(s) to t = '//sci(t_end)//' s'
 
-      call state%init(model%stiff, model%load, 0.0_wp, damping_none, 0.0_wp, 1)
+      call state%init(model%contact, 0.0_wp)
+      call state%own_fields(model%mesh%nnode)
       if (present(sidecar) .and. present(target)) then
-         call out%open(path, overwrite, deck, model, stat, errmsg, sidecar=sidecar, target=target)
+         call out%open(path, overwrite, deck, model, state, stat, errmsg, sidecar=sidecar, target=target)
       else
-         call out%open(path, overwrite, deck, model, stat, errmsg)
+         call out%open(path, overwrite, deck, model, state, stat, errmsg)
       end if
       if (stat /= 0) then
          code = 2
@@ -102,7 +102,7 @@ contains
       call out%file%attr(out%file%id, 'dynamic', 0)
       call out%file%attr(out%file%id, 'convergence_test', 1)
       call out%file%attr(out%file%id, 'initial_kinetic_energy', 0.0_wp)
-      call out%sample(state, model, 0.0_wp)
+      call out%sample(state, 0.0_wp)
 
       allocate (uprev(2, model%mesh%nnode), react_prev(2, model%mesh%nnode), fext_prev(2, model%mesh%nnode))
       uprev = 0
@@ -111,7 +111,7 @@ contains
       allocate (fn_prev(st%nc), d(st%nc), dprev(st%nc))
       fn_prev = 0
       dprev = 0
-      if (model%contact%active) dprev = -model%contact%gap
+      if (state%contact%active) dprev = -state%contact%gap
       converged = .true.
       status = 'converged'
       kkt_max = 0
@@ -161,7 +161,9 @@ contains
          call validity%measure(model%mesh, state%u)
          call validity%write(out%file)
       end if
-      call out%finish(model, state, converged, status, wall, timings, stat, errmsg)
+      state%converged = converged
+      state%status = status
+      call out%finish(model, state, wall, timings, stat, errmsg)
       if (stat /= 0) then
          code = 2
          call st%free()
@@ -195,12 +197,11 @@ contains
       subroutine accept(t)
          real(wp), intent(in) :: t
          kkt_max = max(kkt_max, st%kkt)
-         ! the state for the output module (an explicit_t at rest)
+         ! the state for the writer: at rest (v = 0, no kinetic energy)
          state%u = st%u
          state%v = 0
          state%fint = st%fint
          state%fext = st%fext
-         state%fc = st%fc
          state%step = state%step + 1
          state%time = t
          state%kinetic = 0
@@ -213,7 +214,7 @@ contains
          w_prev = 0.5_wp*sum((react_prev + fext_prev + (st%fint - st%fext)*(1 - model%load%free) + st%fext)* &
                              (st%u - uprev))
          state%external_work = state%external_work + w_prev
-         associate (c => model%contact)
+         associate (c => state%contact)
             if (c%active) then
                c%fn = st%fn
                c%ft = st%ft
@@ -249,11 +250,11 @@ contains
          react_prev = (st%fint - st%fext)*(1 - model%load%free)
          fext_prev = st%fext
          uprev = st%u
-         call out%sample(state, model, residual)
+         call out%sample(state, residual)
       end subroutine accept
 
       subroutine summary()
-         integer :: status_c(model%contact%nc)
+         integer :: status_c(state%contact%nc)
          character(len=:), allocatable :: asked
          write (output_unit, '(a)') repeat('-', 72)
          write (output_unit, '(a)') ' method              static (CHOLMOD, contact condensed onto Gamma_c, '// &
@@ -272,8 +273,8 @@ contains
          do i = 1, 4
             write (output_unit, '(a)') ' KKT '//kkt_names(i)(1:21)//sci(kkt_max(i))//' (relative)'
          end do
-         if (model%contact%active) then
-            associate (c => model%contact)
+         if (state%contact%active) then
+            associate (c => state%contact)
                call c%status(status_c)
                call summary_contact_status(c, status_c)
             end associate
