@@ -16,6 +16,7 @@ module contact2d_model
    use contact2d_obstacle_factory, only: obstacle_create
    use contact2d_gmsh, only: gmsh_read
    use contact2d_explicit, only: damping_none, damping_given, damping_auto
+   use contact2d_initial, only: initial_velocity_warning
    use contact2d_timestep, only: timestep_critical, timestep_choose, timestep_power, timestep_guarded
    implicit none
    private
@@ -44,7 +45,8 @@ module contact2d_model
 
 contains
 
-   !> Build the model. stat /= 0 with a one-line message naming the problem.
+   !> Build the model. stat /= 0 with a one-line message naming the problem. The model is not
+   !> changed after this (every later use is intent(in)); its warnings are all collected here.
    subroutine model_build(deck, model, stat, errmsg)
       type(deck_t), intent(in) :: deck
       type(model_t), intent(out) :: model
@@ -133,6 +135,9 @@ contains
       case ('given'); model%damping = damping_given
       case default; model%damping = damping_auto
       end select
+      ! the last warning: an initial velocity on prescribed dofs (contact2d_initial)
+      errmsg = initial_velocity_warning(model%load%free, deck%initial%velocity)
+      if (len(errmsg) > 0) call model%warnings%add(errmsg)
       stat = 0
       errmsg = ''
    contains

@@ -7,7 +7,6 @@ module contact2d_static_run
    use, intrinsic :: iso_fortran_env, only: output_unit
    use contact2d_kinds, only: wp, i8
    use contact2d_strings, only: str, fixed, sci
-   use contact2d_contact, only: contact_t
    use contact2d_deck, only: deck_t
    use contact2d_model, only: model_t
    use contact2d_state, only: state_t
@@ -16,9 +15,10 @@ module contact2d_static_run
    use contact2d_kkt, only: kkt_names
    use contact2d_sys, only: sys_signal_pending
    use contact2d_validity, only: validity_t
+   use contact2d_report, only: summary_contact_status
    implicit none
    private
-   public :: static_run, static_distance, summary_contact_status
+   public :: static_run, static_distance
 
 contains
 
@@ -409,18 +409,4 @@ contains
    end subroutine supported
 
 
-   !> The summary's contact lines shared by explicit and static runs: status counts, totals and
-   !> the extent of the contact zone (docs/quickstart.md "What a run prints").
-   subroutine summary_contact_status(c, status)
-      type(contact_t), intent(in) :: c
-      integer, intent(in) :: status(:)
-      write (output_unit, '(a)') ' contact             '//c%multiplier_name()//', '//str(c%nc)//' nodes: '// &
-         str(count(status == 1))//' stick, '//str(count(status == 2))//' slip, '// &
-         str(count(status == 0))//' separated; total F_n = '//sci(c%normal_total)//' N/mm, F_t = '// &
-         sci(c%tangential_total)//' N/mm'
-      if (any(status > 0)) then
-         write (output_unit, '(a)') '                     in contact from abscissa '// &
-            sci(minval(c%abscissa, mask=status > 0))//' to '//sci(maxval(c%abscissa, mask=status > 0))//' mm'
-      end if
-   end subroutine summary_contact_status
 end module contact2d_static_run
