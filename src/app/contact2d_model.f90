@@ -17,6 +17,8 @@ module contact2d_model
    use contact2d_gmsh, only: gmsh_read
    use contact2d_explicit, only: damping_none, damping_given, damping_auto
    use contact2d_initial, only: initial_velocity_warning
+   use contact2d_body, only: body_t, body_init
+   use contact2d_pair, only: contact_pair_t, pair_init
    use contact2d_timestep, only: timestep_critical, timestep_choose, timestep_power, timestep_guarded
    implicit none
    private
@@ -26,7 +28,11 @@ module contact2d_model
    !> from then on. What changes during a run is in the state (contact2d_state).
    type :: model_t
       type(mesh_t) :: mesh
-      type(material_t) :: material
+      type(material_t) :: material   !< the material of the one body (bodies(1)%material)
+      !> the bodies (contact2d_body): one today, the whole mesh
+      type(body_t), allocatable :: bodies(:)
+      !> the contact pairs (contact2d_pair): none, or one (the deck's &contact) today
+      type(contact_pair_t), allocatable :: pairs(:)
       type(stiffness_t) :: stiff
       type(loading_t) :: load
       !> the contact operator as built and validated; each run's state works on a copy of it
@@ -84,6 +90,9 @@ contains
       if (stat /= 0) return
       call model%stiff%init(model%mesh, model%material, stat, errmsg)
       if (stat /= 0) return
+      allocate (model%bodies(1))
+      call body_init(model%bodies(1), 'body', [(i, i=1, model%mesh%nel)], model%material)
+      allocate (model%pairs(0))
       ! derived quantities checked before use, naming what they come from (contact2d_checks)
       stat = 1
       if (check_positive(deck%path//': smallest lumped nodal mass (material:density, mesh:lx, ly, nx, ny, level)', &
@@ -144,6 +153,7 @@ contains
       subroutine build_contact()
          integer, allocatable :: nodes(:)
          type(contact_config_t) :: cfg
+         character(len=:), allocatable :: obstacle
          integer :: g
          real(wp) :: d1, d2
          associate (c => deck%contact)
@@ -189,6 +199,7 @@ contains
             cfg%method = c%method
             cfg%penalty_stiffness = c%penalty_stiffness
             cfg%file_id = model%mesh%file_id([(g, g=1, model%mesh%nnode)])
+            obstacle = cfg%obstacle%describe()
             call model%contact%init(cfg, nodes, model%mesh%x, model%load%free, model%stiff%mass, &
                                     model%warnings, stat, errmsg)
             ! a plane whose normal nu (from the obstacle into the body) points along the built-in
@@ -201,7 +212,16 @@ contains
                end if
             end if
          end associate
-         if (stat /= 0) errmsg = deck%path//': '//errmsg
+         if (stat /= 0) then
+            errmsg = deck%path//': '//errmsg
+            return
+         end if
+         ! the one pair: the contact nodes kept by contact%init against the obstacle
+         if (model%contact%active) then
+            deallocate (model%pairs)
+            allocate (model%pairs(1))
+            call pair_init(model%pairs(1), 1, model%contact%node, obstacle)
+         end if
       end subroutine build_contact
 
       subroutine add_edge_load(cfg, group, k)
