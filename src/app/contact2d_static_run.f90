@@ -91,17 +91,7 @@ contains
          return
       end if
       if (present(opened)) opened = .true.
-      call out%file%attr(out%file%id, 'method', 'static')
-      ! the root attributes an explicit file has, with their static values (docs/output.md)
-      call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
-      call out%file%attr(out%file%id, 'dt_limit', trim(deck%solver%dt_limit))
-      call out%file%attr(out%file%id, 'dt_initial', 0.0_wp)
-      call out%file%attr(out%file%id, 'dt_fallback_step', -1)
-      call out%file%attr(out%file%id, 'added_mass', model%added_mass)
-      call out%file%attr(out%file%id, 'body_mass', model%body_mass)
-      call out%file%attr(out%file%id, 'dynamic', 0)
-      call out%file%attr(out%file%id, 'convergence_test', 1)
-      call out%file%attr(out%file%id, 'initial_kinetic_energy', 0.0_wp)
+      call attributes_open(out, deck, model)
       call out%sample(state, 0.0_wp)
 
       allocate (uprev(2, model%mesh%nnode), react_prev(2, model%mesh%nnode), fext_prev(2, model%mesh%nnode))
@@ -143,19 +133,7 @@ contains
       call system_clock(clock1, rate)
       wall = real(clock1 - clock0, wp)/rate
       timings = [st%time_factor + st%time_condense, st%time_pdas, 0.0_wp, 0.0_wp]
-      do i = 1, 4
-         call out%file%attr(out%file%id, 'kkt_'//trim(kkt_names(i)), kkt_max(i))
-      end do
-      call out%file%attr(out%file%id, 'static_increments', nk)
-      call out%file%attr(out%file%id, 'static_steps', int(state%step))
-      call out%file%attr(out%file%id, 'static_splits', splits)
-      call out%file%attr(out%file%id, 'static_iterations', st%iterations)
-      call out%file%attr(out%file%id, 'static_outer_iterations', st%outer_iterations)
-      call out%file%attr(out%file%id, 'factor_nonzeros', st%chol%lnz)
-      call out%file%attr(out%file%id, 'factor_flops', st%chol%flops)
-      call out%file%attr(out%file%id, 'time_factor_seconds', st%time_factor)
-      call out%file%attr(out%file%id, 'time_condense_seconds', st%time_condense)
-      call out%file%attr(out%file%id, 'time_solve_seconds', st%time_pdas)
+      call attributes_end(out, st, kkt_max, nk, int(state%step), splits)
       ! the small-strain, small-displacement range of the end state (docs/output.md)
       if (status /= 'interrupted' .and. status /= 'static solver failure') then
          call validity%measure(model%mesh, state%u)
@@ -287,6 +265,46 @@ contains
          write (output_unit, '(a)') repeat('-', 72)
       end subroutine summary
    end subroutine static_run
+
+   !> The root attributes an explicit file has, with their static values (docs/output.md).
+   subroutine attributes_open(out, deck, model)
+      type(output_t), intent(inout) :: out
+      type(deck_t), intent(in) :: deck
+      type(model_t), intent(in) :: model
+      call out%file%attr(out%file%id, 'method', 'static')
+      call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
+      call out%file%attr(out%file%id, 'dt_limit', trim(deck%solver%dt_limit))
+      call out%file%attr(out%file%id, 'dt_initial', 0.0_wp)
+      call out%file%attr(out%file%id, 'dt_fallback_step', -1)
+      call out%file%attr(out%file%id, 'added_mass', model%added_mass)
+      call out%file%attr(out%file%id, 'body_mass', model%body_mass)
+      call out%file%attr(out%file%id, 'dynamic', 0)
+      call out%file%attr(out%file%id, 'convergence_test', 1)
+      call out%file%attr(out%file%id, 'initial_kinetic_energy', 0.0_wp)
+   end subroutine attributes_open
+
+   !> The static engine's closing attributes: the largest KKT residuals, the increments, steps
+   !> and halvings, the iterations, the factor's size and the engine's times (docs/output.md).
+   subroutine attributes_end(out, st, kkt_max, nk, steps, splits)
+      type(output_t), intent(inout) :: out
+      type(static_t), intent(in) :: st
+      real(wp), intent(in) :: kkt_max(4)
+      integer, intent(in) :: nk, steps, splits
+      integer :: i
+      do i = 1, 4
+         call out%file%attr(out%file%id, 'kkt_'//trim(kkt_names(i)), kkt_max(i))
+      end do
+      call out%file%attr(out%file%id, 'static_increments', nk)
+      call out%file%attr(out%file%id, 'static_steps', steps)
+      call out%file%attr(out%file%id, 'static_splits', splits)
+      call out%file%attr(out%file%id, 'static_iterations', st%iterations)
+      call out%file%attr(out%file%id, 'static_outer_iterations', st%outer_iterations)
+      call out%file%attr(out%file%id, 'factor_nonzeros', st%chol%lnz)
+      call out%file%attr(out%file%id, 'factor_flops', st%chol%flops)
+      call out%file%attr(out%file%id, 'time_factor_seconds', st%time_factor)
+      call out%file%attr(out%file%id, 'time_condense_seconds', st%time_condense)
+      call out%file%attr(out%file%id, 'time_solve_seconds', st%time_pdas)
+   end subroutine attributes_end
 
    !> Take the static engine from its state at t_from to t_to: one increment or, when that does not
    !> settle (the active set cycles or needs more than solver:static_iterations iterations), the
