@@ -11,10 +11,12 @@ module contact2d_report
    use contact2d_state, only: state_t
    use contact2d_contact, only: contact_t
    use contact2d_threads, only: thread_tuner_t
+   use contact2d_static, only: static_t
+   use contact2d_kkt, only: kkt_names
    implicit none
    private
    public :: report_header, report_time_step, ramp_warning, progress_line, report_summary, summary_contact_status
-   public :: report_threads
+   public :: report_threads, report_static_summary
 
    !> A load ramp covered by fewer steps than this is warned about (ramp_warning).
    real(wp), parameter :: ramp_steps_min = 10
@@ -28,7 +30,7 @@ contains
       logical, intent(in) :: quiet
       type(deck_t), intent(in) :: deck
       type(model_t), intent(in) :: model
-      character(len=:), allocatable :: size
+      character(len=:), allocatable :: extent
       integer :: i
       write (output_unit, '(a)') program_name//' '//program_version//': '//printable(deck_path//' -> '//output)
       if (.not. quiet) then
@@ -40,11 +42,11 @@ contains
          write (error_unit, '(a)') program_name//': warning: '//printable(trim(model%warnings%items(i)))
       end do
       if (model%mesh%nx > 0) then
-         size = str(model%mesh%nx)//' x '//str(model%mesh%ny)//' ='
+         extent = str(model%mesh%nx)//' x '//str(model%mesh%ny)//' ='
       else
-         size = 'from '//trim(deck%mesh%file)//':'
+         extent = 'from '//trim(deck%mesh%file)//':'
       end if
-      write (output_unit, '(a)') 'mesh '//size//' '// &
+      write (output_unit, '(a)') 'mesh '//extent//' '// &
          str(model%mesh%nel)//' Q1 elements, '//str(model%mesh%nnode)//' nodes, '// &
          str(model%stiff%nshape)//' distinct element matrix(es)'
    end subroutine report_header
@@ -233,6 +235,48 @@ contains
          ' on '//str(tuner%steps(2))//' steps, 1 on '//str(tuner%steps(1))//' ('//str(tuner%switches)// &
          ' switches, CONTACT2D_THREAD_SWITCHES)'
    end subroutine report_threads
+
+   !> The summary of a static run (docs/static.md): increments, halvings, convergence, the
+   !> largest KKT residuals, the contact lines, the engine's times, the output.
+   subroutine report_static_summary(st, state, nk, splits, kkt_max, wall, final)
+      type(static_t), intent(in) :: st
+      type(state_t), intent(in) :: state
+      integer, intent(in) :: nk, splits   !< increments asked for, halvings made
+      real(wp), intent(in) :: kkt_max(4)  !< largest relative KKT residuals
+      real(wp), intent(in) :: wall        !< wall time [s]
+      character(len=*), intent(in) :: final   !< where the file is
+      integer :: status_c(state%contact%nc), i
+      character(len=:), allocatable :: asked
+      write (output_unit, '(a)') repeat('-', 72)
+      write (output_unit, '(a)') ' method              static (CHOLMOD, contact condensed onto Gamma_c, '// &
+         'primal-dual active set)'
+      if (splits == 0) then
+         asked = ' of '//str(nk)
+      else
+         asked = ' for '//str(nk)
+      end if
+      write (output_unit, '(a)') ' increments          '//str(state%step)//asked//' ('//str(st%iterations)// &
+         ' active-set iterations, '//str(st%outer_iterations)//' threshold passes)'
+      if (splits > 0) write (output_unit, '(a)') '                     '//str(splits)//' halving(s): '// &
+         'an increment that did not settle was taken again in halves (solver:static_splits)'
+      write (output_unit, '(a)') ' converged           '//trim(merge('yes', 'NO ', state%converged))// &
+         trim(merge(' '//state%status, repeat(' ', len(state%status) + 1), .not. state%converged))
+      do i = 1, 4
+         write (output_unit, '(a)') ' KKT '//kkt_names(i)(1:21)//sci(kkt_max(i))//' (relative)'
+      end do
+      if (state%contact%active) then
+         associate (c => state%contact)
+            call c%status(status_c)
+            call summary_contact_status(c, status_c)
+         end associate
+      end if
+      write (output_unit, '(a)') ' static solve        '//fixed(st%time_factor + st%time_condense + st%time_pdas, 3)// &
+         ' s (assembly + factorisation '//fixed(st%time_factor, 3)//', condensation '// &
+         fixed(st%time_condense, 3)//', increments '//fixed(st%time_pdas, 3)//')'
+      write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s'
+      write (output_unit, '(a)') ' output              '//final
+      write (output_unit, '(a)') repeat('-', 72)
+   end subroutine report_static_summary
 
    !> The summary's contact lines shared by explicit and static runs: status counts, totals and
    !> the extent of the contact zone (docs/quickstart.md "What a run prints").

@@ -15,7 +15,7 @@ module contact2d_static_run
    use contact2d_kkt, only: kkt_names
    use contact2d_sys, only: sys_signal_pending
    use contact2d_validity, only: validity_t
-   use contact2d_report, only: summary_contact_status
+   use contact2d_report, only: report_static_summary
    implicit none
    private
    public :: static_run, static_distance
@@ -155,7 +155,7 @@ contains
       if (present(target) .and. present(replacing)) then
          if (replacing .and. .not. run_ended) final = path
       end if
-      call summary()
+      call report_static_summary(st, state, nk, splits, kkt_max, wall, final)
       call validity%report()
       call st%free()
       if (converged) then
@@ -231,39 +231,6 @@ contains
          call out%sample(state, residual)
       end subroutine accept
 
-      subroutine summary()
-         integer :: status_c(state%contact%nc)
-         character(len=:), allocatable :: asked
-         write (output_unit, '(a)') repeat('-', 72)
-         write (output_unit, '(a)') ' method              static (CHOLMOD, contact condensed onto Gamma_c, '// &
-            'primal-dual active set)'
-         if (splits == 0) then
-            asked = ' of '//str(nk)
-         else
-            asked = ' for '//str(nk)
-         end if
-         write (output_unit, '(a)') ' increments          '//str(state%step)//asked//' ('//str(st%iterations)// &
-            ' active-set iterations, '//str(st%outer_iterations)//' threshold passes)'
-         if (splits > 0) write (output_unit, '(a)') '                     '//str(splits)//' halving(s): '// &
-            'an increment that did not settle was taken again in halves (solver:static_splits)'
-         write (output_unit, '(a)') ' converged           '//trim(merge('yes', 'NO ', converged))// &
-            trim(merge(' '//status, repeat(' ', len(status) + 1), .not. converged))
-         do i = 1, 4
-            write (output_unit, '(a)') ' KKT '//kkt_names(i)(1:21)//sci(kkt_max(i))//' (relative)'
-         end do
-         if (state%contact%active) then
-            associate (c => state%contact)
-               call c%status(status_c)
-               call summary_contact_status(c, status_c)
-            end associate
-         end if
-         write (output_unit, '(a)') ' static solve        '//fixed(st%time_factor + st%time_condense + st%time_pdas, 3)// &
-            ' s (assembly + factorisation '//fixed(st%time_factor, 3)//', condensation '// &
-            fixed(st%time_condense, 3)//', increments '//fixed(st%time_pdas, 3)//')'
-         write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s'
-         write (output_unit, '(a)') ' output              '//final
-         write (output_unit, '(a)') repeat('-', 72)
-      end subroutine summary
    end subroutine static_run
 
    !> The root attributes an explicit file has, with their static values (docs/output.md).
