@@ -111,13 +111,11 @@ contains
       if (model%contact%penalty) bound = bound//trim(merge(' and ', ' with', model%scaled_nodes > 0))//' the penalty springs'
       write (output_unit, '(a)') 'dt = '//sci(model%dt)//' s = '//fixed(model%dt/model%dt_critical, 3)// &
          ' dt_critical ('//bound//' = '//sci(model%dt_critical)//' s)'
-      associate (omega2_power => model%omega2_power)
-      if (omega2_power > 0) then
+      if (model%omega2_power > 0) then
          write (output_unit, '(a)') 'power iteration ('//str(iterations)//' its): omega_max >= '// &
-            sci(sqrt(omega2_power))//' 1/s, true stable limit <= '//sci(2/sqrt(omega2_power))//' s = '// &
-            fixed(2/sqrt(omega2_power)/model%dt_critical, 3)//' dt_critical (the element bound is conservative)'
+            sci(sqrt(model%omega2_power))//' 1/s, true stable limit <= '//sci(2/sqrt(model%omega2_power))//' s = '// &
+            fixed(2/sqrt(model%omega2_power)/model%dt_critical, 3)//' dt_critical (the element bound is conservative)'
       end if
-      end associate
       if (model%added_mass > 0) then
          write (output_unit, '(a)') 'mass scaling: '//sci(model%added_mass)//' t added at '//str(model%scaled_nodes)// &
             ' node(s) ('//sci(model%added_mass/model%body_mass)//' of the body mass) for a stable step of '// &
