@@ -1,9 +1,13 @@
 !> Command line: contact2d DECK [-o OUT.h5] [--force] [--static] [--set group:variable=value ...]
+!> Also the text of --help and --version.
 module contact2d_cli
+   use, intrinsic :: iso_fortran_env, only: output_unit, compiler_version
    use contact2d_strings, only: str
+   use contact2d_version, only: program_name, program_version
+   use contact2d_build_config, only: sweep_lanes, build_flags
    implicit none
    private
-   public :: cli_t, cli_parse, usage
+   public :: cli_t, cli_parse, usage, cli_print_help, cli_print_version
 
    integer, parameter :: arg_len = 4096
 
@@ -101,6 +105,28 @@ contains
       stat = 0
       errmsg = ''
    end subroutine cli_parse
+
+   !> --help: the usage and the options, on stdout.
+   subroutine cli_print_help()
+      write (output_unit, '(a)') usage
+      write (output_unit, '(a)') 'Runs the deck and writes its HDF5 file (default: <deck stem>.h5 here).'
+      write (output_unit, '(a)') '  -o, --output FILE   output file'
+      write (output_unit, '(a)') '  --force             overwrite an existing output file'
+      write (output_unit, '(a)') '  --set G:V=X         override deck variable V of group G (G#i for the i-th'
+      write (output_unit, '(a)') '                      &dirichlet or &traction); repeatable; validated as the deck'
+      write (output_unit, '(a)') '  -q, --quiet         do not echo the effective deck'
+      write (output_unit, '(a)') '  --static            solve the static problem directly (solver:method = ''static'','
+      write (output_unit, '(a)') '                      docs/static.md) instead of the explicit march'
+      write (output_unit, '(a)') 'Deck reference: docs/deck.md. Output layout: docs/output.md.'
+   end subroutine cli_print_help
+
+   !> --version: the program's version and the build, so that a timing can be told apart from
+   !> another build's (docs/deck.md).
+   subroutine cli_print_version()
+      write (output_unit, '(a)') program_name//' '//program_version
+      write (output_unit, '(a)') 'built with '//compiler_version()//', '//build_flags// &
+         '; the sweep''s inside rows use '//str(sweep_lanes)//' lanes'
+   end subroutine cli_print_version
 
    !> Command argument i in full (deferred length: never cut).
    function argument(i) result(a)

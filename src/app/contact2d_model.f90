@@ -16,19 +16,31 @@ module contact2d_model
    use contact2d_obstacle_factory, only: obstacle_create
    use contact2d_gmsh, only: gmsh_read
    use contact2d_explicit, only: damping_none, damping_given, damping_auto
+   use contact2d_initial, only: initial_velocity_warning
+   use contact2d_body, only: body_t, body_init
+   use contact2d_pair, only: contact_pair_t, pair_init
+   use contact2d_timestep, only: timestep_critical, timestep_choose, timestep_power, timestep_guarded
    implicit none
    private
    public :: model_t, model_build, beside
 
-   !> Everything that does not change during a run.
+   !> Everything the deck and the mesh define: built once by model_build, read-only (intent(in))
+   !> from then on. What changes during a run is in the state (contact2d_state).
    type :: model_t
       type(mesh_t) :: mesh
-      type(material_t) :: material
+      type(material_t) :: material   !< the material of the one body (bodies(1)%material)
+      !> the bodies (contact2d_body): one today, the whole mesh
+      type(body_t), allocatable :: bodies(:)
+      !> the contact pairs (contact2d_pair): none, or one (the deck's &contact) today
+      type(contact_pair_t), allocatable :: pairs(:)
       type(stiffness_t) :: stiff
       type(loading_t) :: load
+      !> the contact operator as built and validated; each run's state works on a copy of it
       type(contact_t) :: contact
-      real(wp) :: dt = 0             !< time step [s]
-      real(wp) :: dt_critical = 0    !< 2/omega_max from the element bound [s]
+      real(wp) :: dt = 0             !< initial time step (contact2d_timestep) [s]
+      real(wp) :: dt_critical = 0    !< critical step: element bound, mass scaling, penalty [s]
+      real(wp) :: omega2_power = 0   !< power-iteration estimate of omega_max^2 (0: none) [1/s^2]
+      logical :: dt_guarded = .false.   !< dt from the power estimate: watch for a growing mode
       integer :: damping = damping_auto
       ! mass scaling (solver:mass_scaling > 0)
       real(wp) :: added_mass = 0     !< total fictitious mass [t]
@@ -39,7 +51,8 @@ module contact2d_model
 
 contains
 
-   !> Build the model. stat /= 0 with a one-line message naming the problem.
+   !> Build the model. stat /= 0 with a one-line message naming the problem. The model is not
+   !> changed after this (every later use is intent(in)); its warnings are all collected here.
    subroutine model_build(deck, model, stat, errmsg)
       type(deck_t), intent(in) :: deck
       type(model_t), intent(out) :: model
@@ -49,7 +62,7 @@ contains
       !> outward normals of the sides bottom, right, top, left
       real(wp), parameter :: outward(2, 4) = reshape([0.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
                                                       -1.0_wp, 0.0_wp], [2, 4])
-      real(wp) :: dt_scaled, omega2
+      real(wp) :: dt_scaled
 
       if (len_trim(deck%mesh%file) > 0) then
          ! a Gmsh mesh (docs/geometry.md): quads only, oriented, Jacobians checked
@@ -77,6 +90,9 @@ contains
       if (stat /= 0) return
       call model%stiff%init(model%mesh, model%material, stat, errmsg)
       if (stat /= 0) return
+      allocate (model%bodies(1))
+      call body_init(model%bodies(1), 'body', [(i, i=1, model%mesh%nel)], model%material)
+      allocate (model%pairs(0))
       ! derived quantities checked before use, naming what they come from (contact2d_checks)
       stat = 1
       if (check_positive(deck%path//': smallest lumped nodal mass (material:density, mesh:lx, ly, nx, ny, level)', &
@@ -111,51 +127,33 @@ contains
          if (stat /= 0) return
       end if
 
-      model%dt_critical = model%stiff%dt_critical()
-      ! with mass scaling, the bound of the scaled system where it is the larger (both hold:
-      ! added mass only lowers omega_max)
-      model%dt_critical = max(model%dt_critical, dt_scaled)
-      if (model%contact%penalty) then
-         ! penalty springs k_p w_i at the contact nodes stiffen them: the nodal bound
-         ! dt <= 2 / sqrt(omega_max^2 + k_p w_i / m_i); omega_max^2 and m_i of the
-         ! scaled system when mass scaling gives the larger step
-         omega2 = model%stiff%omega2_element
-         if (dt_scaled > model%stiff%dt_critical()) omega2 = (2/dt_scaled)**2
-         model%dt_critical = 2/sqrt(omega2 + &
-                                    maxval(model%contact%penalty_stiffness*model%contact%weight/model%contact%mass))
-      end if
+      ! the time step (contact2d_timestep): the critical step, dt from the deck, and for the
+      ! explicit engine the power-iteration estimate (solver:dt_limit = 'power')
+      model%dt_critical = timestep_critical(model%stiff, model%contact, dt_scaled)
       stat = 1
       if (check_positive(deck%path//': dt_critical (from material:young, density and the mesh size)', &
                          model%dt_critical, errmsg)) return
-      stat = 0
-      if (deck%solver%dt > 0) then
-         model%dt = deck%solver%dt
-      else
-         model%dt = deck%solver%dt_factor*model%dt_critical
-      end if
-      if (model%dt > model%dt_critical .and. .not. deck%solver%allow_unstable) then
-         stat = 1
-         errmsg = deck%path//': solver: dt = '//str(model%dt)//' s exceeds '// &
-                  trim(merge('the penalty-adjusted dt_critical', 'dt_critical                     ', model%contact%penalty))// &
-                  ' = '//str(model%dt_critical)//' s (ratio '//str(anint(1000*(model%dt/model%dt_critical))/1000)// &
-                  '); set solver:allow_unstable = .true. to run anyway'
-         return
-      end if
-      if (model%dt > model%dt_critical) then
-         call model%warnings%add('dt = '//str(model%dt/model%dt_critical)//' dt_critical: '// &
-                                 'allowed by solver:allow_unstable, the run may blow up')
+      call timestep_choose(deck, model%dt_critical, model%contact%penalty, model%dt, model%warnings, stat, errmsg)
+      if (stat /= 0) return
+      if (deck%solver%method /= 'static') then
+         call timestep_power(deck, model%stiff, model%load%free, model%contact, model%dt, model%omega2_power)
+         model%dt_guarded = timestep_guarded(deck, model%dt, model%dt_critical)
       end if
       select case (trim(deck%solver%damping))
       case ('none'); model%damping = damping_none
       case ('given'); model%damping = damping_given
       case default; model%damping = damping_auto
       end select
+      ! the last warning: an initial velocity on prescribed dofs (contact2d_initial)
+      errmsg = initial_velocity_warning(model%load%free, deck%initial%velocity)
+      if (len(errmsg) > 0) call model%warnings%add(errmsg)
       stat = 0
       errmsg = ''
    contains
       subroutine build_contact()
          integer, allocatable :: nodes(:)
          type(contact_config_t) :: cfg
+         character(len=:), allocatable :: obstacle
          integer :: g
          real(wp) :: d1, d2
          associate (c => deck%contact)
@@ -201,6 +199,7 @@ contains
             cfg%method = c%method
             cfg%penalty_stiffness = c%penalty_stiffness
             cfg%file_id = model%mesh%file_id([(g, g=1, model%mesh%nnode)])
+            obstacle = cfg%obstacle%describe()
             call model%contact%init(cfg, nodes, model%mesh%x, model%load%free, model%stiff%mass, &
                                     model%warnings, stat, errmsg)
             ! a plane whose normal nu (from the obstacle into the body) points along the built-in
@@ -213,7 +212,16 @@ contains
                end if
             end if
          end associate
-         if (stat /= 0) errmsg = deck%path//': '//errmsg
+         if (stat /= 0) then
+            errmsg = deck%path//': '//errmsg
+            return
+         end if
+         ! the one pair: the contact nodes kept by contact%init against the obstacle
+         if (model%contact%active) then
+            deallocate (model%pairs)
+            allocate (model%pairs(1))
+            call pair_init(model%pairs(1), 1, model%contact%node, obstacle)
+         end if
       end subroutine build_contact
 
       subroutine add_edge_load(cfg, group, k)

@@ -7,18 +7,18 @@ module contact2d_static_run
    use, intrinsic :: iso_fortran_env, only: output_unit
    use contact2d_kinds, only: wp, i8
    use contact2d_strings, only: str, fixed, sci
-   use contact2d_contact, only: contact_t
    use contact2d_deck, only: deck_t
    use contact2d_model, only: model_t
-   use contact2d_explicit, only: explicit_t, damping_none
+   use contact2d_state, only: state_t
    use contact2d_output, only: output_t
    use contact2d_static, only: static_t, static_saved_t
    use contact2d_kkt, only: kkt_names
    use contact2d_sys, only: sys_signal_pending
    use contact2d_validity, only: validity_t
+   use contact2d_report, only: report_static_summary
    implicit none
    private
-   public :: static_run, static_distance, summary_contact_status
+   public :: static_run, static_distance
 
 contains
 
@@ -32,7 +32,7 @@ contains
    subroutine static_run(deck, model, path, overwrite, clock0, code, errmsg, sidecar, target, written, opened, &
                          replacing, ended)
       type(deck_t), intent(in) :: deck
-      type(model_t), intent(inout) :: model
+      type(model_t), intent(in) :: model
       character(len=*), intent(in) :: path
       logical, intent(in) :: overwrite
       integer(i8), intent(in) :: clock0   !< system_clock at program start
@@ -43,7 +43,7 @@ contains
       logical, intent(in), optional :: replacing
       logical, intent(out), optional :: ended
       type(static_t) :: st
-      type(explicit_t), target :: state
+      type(state_t), target :: state   !< at rest after each increment: v = 0, dt = 0
       type(output_t) :: out
       type(validity_t) :: validity
       integer :: k, nk, stat, i, splits
@@ -73,17 +73,17 @@ contains
       nk = deck%solver%static_increments
       st%max_iter = deck%solver%static_iterations
       t_end = model%load%end_time()
-      model%dt = 0
       write (output_unit, '(a)') 'static engine: '//str(st%nfree)//' free dofs, '//str(st%ncdof)// &
          ' condensed onto Gamma_c ('//str(st%nc)//' normal, '//str(st%nt)//' tangential unknowns); CHOLMOD factor '// &
          str(nint(st%chol%lnz))//' nonzeros, '//sci(st%chol%flops)//' flops, smallest pivot / diagonal '// &
          sci(st%chol%pivot_ratio)//'; '//str(nk)//' increment(s) to t = '//sci(t_end)//' s'
 
-      call state%init(model%stiff, model%load, 0.0_wp, damping_none, 0.0_wp, 1)
+      call state%init(model%contact, 0.0_wp)
+      call state%own_fields(model%mesh%nnode)
       if (present(sidecar) .and. present(target)) then
-         call out%open(path, overwrite, deck, model, stat, errmsg, sidecar=sidecar, target=target)
+         call out%open(path, overwrite, deck, model, state, stat, errmsg, sidecar=sidecar, target=target)
       else
-         call out%open(path, overwrite, deck, model, stat, errmsg)
+         call out%open(path, overwrite, deck, model, state, stat, errmsg)
       end if
       if (stat /= 0) then
          code = 2
@@ -91,18 +91,8 @@ contains
          return
       end if
       if (present(opened)) opened = .true.
-      call out%file%attr(out%file%id, 'method', 'static')
-      ! the root attributes an explicit file has, with their static values (docs/output.md)
-      call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
-      call out%file%attr(out%file%id, 'dt_limit', trim(deck%solver%dt_limit))
-      call out%file%attr(out%file%id, 'dt_initial', 0.0_wp)
-      call out%file%attr(out%file%id, 'dt_fallback_step', -1)
-      call out%file%attr(out%file%id, 'added_mass', model%added_mass)
-      call out%file%attr(out%file%id, 'body_mass', model%body_mass)
-      call out%file%attr(out%file%id, 'dynamic', 0)
-      call out%file%attr(out%file%id, 'convergence_test', 1)
-      call out%file%attr(out%file%id, 'initial_kinetic_energy', 0.0_wp)
-      call out%sample(state, model, 0.0_wp)
+      call attributes_open(out, deck, model)
+      call out%sample(state, 0.0_wp)
 
       allocate (uprev(2, model%mesh%nnode), react_prev(2, model%mesh%nnode), fext_prev(2, model%mesh%nnode))
       uprev = 0
@@ -111,7 +101,7 @@ contains
       allocate (fn_prev(st%nc), d(st%nc), dprev(st%nc))
       fn_prev = 0
       dprev = 0
-      if (model%contact%active) dprev = -model%contact%gap
+      if (state%contact%active) dprev = -state%contact%gap
       converged = .true.
       status = 'converged'
       kkt_max = 0
@@ -143,25 +133,15 @@ contains
       call system_clock(clock1, rate)
       wall = real(clock1 - clock0, wp)/rate
       timings = [st%time_factor + st%time_condense, st%time_pdas, 0.0_wp, 0.0_wp]
-      do i = 1, 4
-         call out%file%attr(out%file%id, 'kkt_'//trim(kkt_names(i)), kkt_max(i))
-      end do
-      call out%file%attr(out%file%id, 'static_increments', nk)
-      call out%file%attr(out%file%id, 'static_steps', int(state%step))
-      call out%file%attr(out%file%id, 'static_splits', splits)
-      call out%file%attr(out%file%id, 'static_iterations', st%iterations)
-      call out%file%attr(out%file%id, 'static_outer_iterations', st%outer_iterations)
-      call out%file%attr(out%file%id, 'factor_nonzeros', st%chol%lnz)
-      call out%file%attr(out%file%id, 'factor_flops', st%chol%flops)
-      call out%file%attr(out%file%id, 'time_factor_seconds', st%time_factor)
-      call out%file%attr(out%file%id, 'time_condense_seconds', st%time_condense)
-      call out%file%attr(out%file%id, 'time_solve_seconds', st%time_pdas)
+      call attributes_end(out, st, kkt_max, nk, int(state%step), splits)
       ! the small-strain, small-displacement range of the end state (docs/output.md)
       if (status /= 'interrupted' .and. status /= 'static solver failure') then
          call validity%measure(model%mesh, state%u)
          call validity%write(out%file)
       end if
-      call out%finish(model, state, converged, status, wall, timings, stat, errmsg)
+      state%converged = converged
+      state%status = status
+      call out%finish(model, state, wall, timings, stat, errmsg)
       if (stat /= 0) then
          code = 2
          call st%free()
@@ -175,7 +155,7 @@ contains
       if (present(target) .and. present(replacing)) then
          if (replacing .and. .not. run_ended) final = path
       end if
-      call summary()
+      call report_static_summary(st, state, nk, splits, kkt_max, wall, final)
       call validity%report()
       call st%free()
       if (converged) then
@@ -195,12 +175,11 @@ contains
       subroutine accept(t)
          real(wp), intent(in) :: t
          kkt_max = max(kkt_max, st%kkt)
-         ! the state for the output module (an explicit_t at rest)
+         ! the state for the writer: at rest (v = 0, no kinetic energy)
          state%u = st%u
          state%v = 0
          state%fint = st%fint
          state%fext = st%fext
-         state%fc = st%fc
          state%step = state%step + 1
          state%time = t
          state%kinetic = 0
@@ -213,7 +192,7 @@ contains
          w_prev = 0.5_wp*sum((react_prev + fext_prev + (st%fint - st%fext)*(1 - model%load%free) + st%fext)* &
                              (st%u - uprev))
          state%external_work = state%external_work + w_prev
-         associate (c => model%contact)
+         associate (c => state%contact)
             if (c%active) then
                c%fn = st%fn
                c%ft = st%ft
@@ -249,43 +228,50 @@ contains
          react_prev = (st%fint - st%fext)*(1 - model%load%free)
          fext_prev = st%fext
          uprev = st%u
-         call out%sample(state, model, residual)
+         call out%sample(state, residual)
       end subroutine accept
 
-      subroutine summary()
-         integer :: status_c(model%contact%nc)
-         character(len=:), allocatable :: asked
-         write (output_unit, '(a)') repeat('-', 72)
-         write (output_unit, '(a)') ' method              static (CHOLMOD, contact condensed onto Gamma_c, '// &
-            'primal-dual active set)'
-         if (splits == 0) then
-            asked = ' of '//str(nk)
-         else
-            asked = ' for '//str(nk)
-         end if
-         write (output_unit, '(a)') ' increments          '//str(state%step)//asked//' ('//str(st%iterations)// &
-            ' active-set iterations, '//str(st%outer_iterations)//' threshold passes)'
-         if (splits > 0) write (output_unit, '(a)') '                     '//str(splits)//' halving(s): '// &
-            'an increment that did not settle was taken again in halves (solver:static_splits)'
-         write (output_unit, '(a)') ' converged           '//trim(merge('yes', 'NO ', converged))// &
-            trim(merge(' '//status, repeat(' ', len(status) + 1), .not. converged))
-         do i = 1, 4
-            write (output_unit, '(a)') ' KKT '//kkt_names(i)(1:21)//sci(kkt_max(i))//' (relative)'
-         end do
-         if (model%contact%active) then
-            associate (c => model%contact)
-               call c%status(status_c)
-               call summary_contact_status(c, status_c)
-            end associate
-         end if
-         write (output_unit, '(a)') ' static solve        '//fixed(st%time_factor + st%time_condense + st%time_pdas, 3)// &
-            ' s (assembly + factorisation '//fixed(st%time_factor, 3)//', condensation '// &
-            fixed(st%time_condense, 3)//', increments '//fixed(st%time_pdas, 3)//')'
-         write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s'
-         write (output_unit, '(a)') ' output              '//final
-         write (output_unit, '(a)') repeat('-', 72)
-      end subroutine summary
    end subroutine static_run
+
+   !> The root attributes an explicit file has, with their static values (docs/output.md).
+   subroutine attributes_open(out, deck, model)
+      type(output_t), intent(inout) :: out
+      type(deck_t), intent(in) :: deck
+      type(model_t), intent(in) :: model
+      call out%file%attr(out%file%id, 'method', 'static')
+      call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
+      call out%file%attr(out%file%id, 'dt_limit', trim(deck%solver%dt_limit))
+      call out%file%attr(out%file%id, 'dt_initial', 0.0_wp)
+      call out%file%attr(out%file%id, 'dt_fallback_step', -1)
+      call out%file%attr(out%file%id, 'added_mass', model%added_mass)
+      call out%file%attr(out%file%id, 'body_mass', model%body_mass)
+      call out%file%attr(out%file%id, 'dynamic', 0)
+      call out%file%attr(out%file%id, 'convergence_test', 1)
+      call out%file%attr(out%file%id, 'initial_kinetic_energy', 0.0_wp)
+   end subroutine attributes_open
+
+   !> The static engine's closing attributes: the largest KKT residuals, the increments, steps
+   !> and halvings, the iterations, the factor's size and the engine's times (docs/output.md).
+   subroutine attributes_end(out, st, kkt_max, nk, steps, splits)
+      type(output_t), intent(inout) :: out
+      type(static_t), intent(in) :: st
+      real(wp), intent(in) :: kkt_max(4)
+      integer, intent(in) :: nk, steps, splits
+      integer :: i
+      do i = 1, 4
+         call out%file%attr(out%file%id, 'kkt_'//trim(kkt_names(i)), kkt_max(i))
+      end do
+      call out%file%attr(out%file%id, 'static_increments', nk)
+      call out%file%attr(out%file%id, 'static_steps', steps)
+      call out%file%attr(out%file%id, 'static_splits', splits)
+      call out%file%attr(out%file%id, 'static_iterations', st%iterations)
+      call out%file%attr(out%file%id, 'static_outer_iterations', st%outer_iterations)
+      call out%file%attr(out%file%id, 'factor_nonzeros', st%chol%lnz)
+      call out%file%attr(out%file%id, 'factor_flops', st%chol%flops)
+      call out%file%attr(out%file%id, 'time_factor_seconds', st%time_factor)
+      call out%file%attr(out%file%id, 'time_condense_seconds', st%time_condense)
+      call out%file%attr(out%file%id, 'time_solve_seconds', st%time_pdas)
+   end subroutine attributes_end
 
    !> Take the static engine from its state at t_from to t_to: one increment or, when that does not
    !> settle (the active set cycles or needs more than solver:static_iterations iterations), the
@@ -408,18 +394,4 @@ contains
    end subroutine supported
 
 
-   !> The summary's contact lines shared by explicit and static runs: status counts, totals and
-   !> the extent of the contact zone (docs/quickstart.md "What a run prints").
-   subroutine summary_contact_status(c, status)
-      type(contact_t), intent(in) :: c
-      integer, intent(in) :: status(:)
-      write (output_unit, '(a)') ' contact             '//c%multiplier_name()//', '//str(c%nc)//' nodes: '// &
-         str(count(status == 1))//' stick, '//str(count(status == 2))//' slip, '// &
-         str(count(status == 0))//' separated; total F_n = '//sci(c%normal_total)//' N/mm, F_t = '// &
-         sci(c%tangential_total)//' N/mm'
-      if (any(status > 0)) then
-         write (output_unit, '(a)') '                     in contact from abscissa '// &
-            sci(minval(c%abscissa, mask=status > 0))//' to '//sci(maxval(c%abscissa, mask=status > 0))//' mm'
-      end if
-   end subroutine summary_contact_status
 end module contact2d_static_run

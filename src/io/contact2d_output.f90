@@ -3,14 +3,17 @@
 !> Layout: root attributes; /mesh; /contact (contact runs); /history/<name> extendible series,
 !> buffered and flushed every `flush_samples` samples or `flush_seconds` of wall time; /final
 !> written at the end, also after a blow-up, so the file always opens.
+!> It reads the model (what the deck and the mesh define) and the state (what the engine
+!> computed: contact2d_state); it knows neither engine.
 module contact2d_output
    use contact2d_kinds, only: wp, i8
    use contact2d_version, only: program_name, program_version, output_format_version
    use contact2d_h5, only: h5file_t, h5series_t
    use contact2d_deck, only: deck_t
    use contact2d_model, only: model_t
-   use contact2d_explicit, only: explicit_t
    use contact2d_friction, only: parameter_name_len
+   use contact2d_state, only: state_t
+   use contact2d_contact, only: contact_t
    use contact2d_strings, only: str
    use contact2d_sys, only: sys_write_file, sys_strerror
    use contact2d_outpath, only: sidecar_name
@@ -22,7 +25,7 @@ module contact2d_output
    !> History series: SPEC section 8 names first, then additions (docs/output.md).
    !> kinetic_energy and strain_energy are the staggered energies of the balance (SPEC section 6);
    !> kinetic_energy_physical and strain_energy_physical those of the state at the last whole
-   !> step t_n (explicit_t kinetic_step, strain_step).
+   !> step t_n (state_t kinetic_step, strain_step).
    character(len=24), parameter :: history_names(18) = [character(len=24) :: &
       'time', 'kinetic_energy', 'strain_energy', 'external_work', 'friction_dissipation', &
       'damping_dissipation', 'energy_balance_error', 'residual', 'normal_force_total', &
@@ -63,12 +66,13 @@ contains
    !> Create the file and write what is known before the first step. The sidecar goes to
    !> `sidecar` (default <path stem>.xmf) and refers to the HDF5 file as `target` (default path):
    !> a run writes temporary files and renames them at the end (contact2d_outpath).
-   subroutine output_open(this, path, overwrite, deck, model, stat, errmsg, sidecar, target)
+   subroutine output_open(this, path, overwrite, deck, model, state, stat, errmsg, sidecar, target)
       class(output_t), intent(inout) :: this
       character(len=*), intent(in) :: path
       logical, intent(in) :: overwrite
       type(deck_t), intent(in) :: deck
       type(model_t), intent(in) :: model
+      type(state_t), intent(in) :: state   !< the state at t = 0 (its time step)
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       character(len=*), intent(in), optional :: sidecar, target
@@ -101,7 +105,7 @@ contains
       else
          call this%file%attr(root, 'multiplier', 'none')
       end if
-      call this%file%attr(root, 'dt', model%dt)
+      call this%file%attr(root, 'dt', state%dt)
       call this%file%attr(root, 'dt_critical', model%dt_critical)
       call this%file%attr(root, 'element_count', model%mesh%nel)
       call this%file%attr(root, 'node_count', model%mesh%nnode)
@@ -155,21 +159,21 @@ contains
    end subroutine output_open
 
    !> Record one history sample (buffered).
-   subroutine output_sample(this, solver, model, residual)
+   !> The contact's maxima and counts since the last sample are reset (they are per sample).
+   subroutine output_sample(this, state, residual)
       class(output_t), intent(inout) :: this
-      type(explicit_t), intent(in) :: solver
-      type(model_t), intent(inout) :: model
+      type(state_t), intent(inout) :: state
       real(wp), intent(in) :: residual
       integer(i8) :: now, rate
       this%nbuf = this%nbuf + 1
-      associate (c => model%contact)
-         this%buffer(this%nbuf, :) = [solver%time, solver%kinetic, solver%strain, solver%external_work, &
-                                      c%friction_dissipation, solver%damping_dissipation, &
-                                      solver%balance_error(c%friction_dissipation, c%normal_work), &
+      associate (c => state%contact)
+         this%buffer(this%nbuf, :) = [state%time, state%kinetic, state%strain, state%external_work, &
+                                      c%friction_dissipation, state%damping_dissipation, &
+                                      state%balance_error(), &
                                       residual, c%normal_total, c%tangential_total, c%normal_work, &
-                                      real(solver%step, wp), solver%alpha, c%stick_increment_max, &
+                                      real(state%step, wp), state%alpha, c%stick_increment_max, &
                                       real(c%status_changes, wp), c%penetration_max, &
-                                      solver%kinetic_step, solver%strain_step]
+                                      state%kinetic_step, state%strain_step]
          c%stick_increment_max = 0
          c%status_changes = 0
          c%penetration_max = 0
@@ -181,25 +185,25 @@ contains
    end subroutine output_sample
 
    !> /fields/<step>: a snapshot of the displacement (and the contact fields) at this step.
-   subroutine output_snapshot(this, solver, model)
+   subroutine output_snapshot(this, model, state)
       class(output_t), intent(inout) :: this
-      type(explicit_t), intent(in) :: solver
       type(model_t), intent(in) :: model
+      type(state_t), intent(in) :: state
       integer(hid_t) :: fields, g
-      real(wp) :: pressure(model%contact%nc), shear(model%contact%nc)
-      integer :: status(model%contact%nc), info
+      real(wp) :: pressure(state%contact%nc), shear(state%contact%nc)
+      integer :: status(state%contact%nc), info
       if (this%fields < 0) this%fields = this%file%group(this%file%id, 'fields')
       fields = this%fields
-      g = this%file%group(fields, str(solver%step))
-      call this%file%attr(g, 'time', solver%time)
-      call this%file%attr(g, 'step', int(solver%step))
-      call this%file%dataset(g, 'displacement', model%mesh%file_order(solver%u), 'mm')
-      if (model%contact%active) then
-         call this%file%dataset(g, 'contact_normal_force', model%contact%fn, 'N/mm')
-         call this%file%dataset(g, 'contact_tangential_force', model%contact%ft, 'N/mm')
+      g = this%file%group(fields, str(state%step))
+      call this%file%attr(g, 'time', state%time)
+      call this%file%attr(g, 'step', int(state%step))
+      call this%file%dataset(g, 'displacement', model%mesh%file_order(state%u), 'mm')
+      if (state%contact%active) then
+         call this%file%dataset(g, 'contact_normal_force', state%contact%fn, 'N/mm')
+         call this%file%dataset(g, 'contact_tangential_force', state%contact%ft, 'N/mm')
          ! the multiplier fields and statuses as /final/contact has them (SPEC section 3)
-         call model%contact%fields(pressure, shear, info)
-         call model%contact%status(status)
+         call state%contact%fields(pressure, shear, info)
+         call state%contact%status(status)
          call this%file%dataset(g, 'contact_pressure', pressure, 'MPa')
          call this%file%dataset(g, 'contact_shear', shear, 'MPa')
          call this%file%dataset(g, 'contact_status', status, '0 separated, 1 stick, 2 slip')
@@ -208,8 +212,8 @@ contains
       call this%file%flush()
       if (this%nsnap < size(this%snap_step)) then
          this%nsnap = this%nsnap + 1
-         this%snap_step(this%nsnap) = solver%step
-         this%snap_time(this%nsnap) = solver%time
+         this%snap_step(this%nsnap) = state%step
+         this%snap_time(this%nsnap) = state%time
       end if
    end subroutine output_snapshot
 
@@ -227,13 +231,12 @@ contains
       call system_clock(this%last_flush_clock)
    end subroutine output_flush_history
 
-   !> Write /final and the closing attributes, close the file, write the XDMF sidecar.
-   subroutine output_finish(this, model, solver, converged, status, wall_seconds, timings, stat, errmsg)
+   !> Write /final and the closing attributes (the state's status and convergence last), close
+   !> the file, write the XDMF sidecar.
+   subroutine output_finish(this, model, state, wall_seconds, timings, stat, errmsg)
       class(output_t), intent(inout) :: this
       type(model_t), intent(in) :: model
-      type(explicit_t), intent(in) :: solver
-      logical, intent(in) :: converged
-      character(len=*), intent(in) :: status
+      type(state_t), intent(in) :: state
       real(wp), intent(in) :: wall_seconds
       real(wp), intent(in) :: timings(:)   !< set-up, step loop, contact, output [s]
       integer, intent(out) :: stat
@@ -249,31 +252,31 @@ contains
       call this%file%close_group(this%history)
       call this%file%close_group(this%fields)
       root = this%file%id
-      call this%file%attr(root, 'steps', int(solver%step))
+      call this%file%attr(root, 'steps', int(state%step))
       call this%file%attr(root, 'wall_seconds', wall_seconds)
       call this%file%attr(root, 'time_setup_seconds', timings(1))
       call this%file%attr(root, 'time_steps_seconds', timings(2))
       call this%file%attr(root, 'time_contact_seconds', timings(3))
       call this%file%attr(root, 'time_output_seconds', timings(4))
-      call this%file%attr(root, 'final_time', solver%time)
+      call this%file%attr(root, 'final_time', state%time)
 
       allocate (stress(3, model%mesh%nel))
       do e = 1, model%mesh%nel
          stress(:, e) = model%stiff%element%stress_average(model%mesh%element_coordinates(e), &
                                                            model%material%dmat(), &
-                                                           [(solver%u(:, model%mesh%conn(a, e)), a=1, 4)])
+                                                           [(state%u(:, model%mesh%conn(a, e)), a=1, 4)])
       end do
-      reaction = (solver%fint - solver%fext)*(1 - model%load%free)
+      reaction = (state%fint - state%fext)*(1 - model%load%free)
       g = this%file%group(root, 'final')
-      call this%file%dataset(g, 'displacement', model%mesh%file_order(solver%u), 'mm')
-      call this%file%dataset(g, 'velocity', model%mesh%file_order(solver%v), 'mm/s')
+      call this%file%dataset(g, 'displacement', model%mesh%file_order(state%u), 'mm')
+      call this%file%dataset(g, 'velocity', model%mesh%file_order(state%v), 'mm/s')
       call this%file%dataset(g, 'stress', stress, 'MPa')
       call this%file%dataset(g, 'reaction', model%mesh%file_order(reaction), 'N/mm')
-      if (model%contact%active) call write_final_contact(this, g, model)
+      if (state%contact%active) call write_final_contact(this, g, state%contact)
       call this%file%close_group(g)
       ! the status last: a file whose /final failed to be written still says 'running'
-      call this%file%attr(root, 'converged', merge(1, 0, converged))
-      call this%file%attr(root, 'status', status)
+      call this%file%attr(root, 'converged', merge(1, 0, state%converged))
+      call this%file%attr(root, 'status', state%status)
       call this%file%close()
       stat = this%file%stat
       errmsg = ''
@@ -286,14 +289,14 @@ contains
    end subroutine output_finish
 
    !> /final/contact: nodal forces, multiplier fields and status (SPEC section 8).
-   subroutine write_final_contact(this, final, model)
+   subroutine write_final_contact(this, final, contact)
       type(output_t), intent(inout) :: this
       integer(hid_t), intent(in) :: final
-      type(model_t), intent(in) :: model
+      type(contact_t), intent(in) :: contact   !< the state's contact operator
       integer(hid_t) :: g
-      real(wp) :: pressure(model%contact%nc), shear(model%contact%nc)
-      integer :: status(model%contact%nc), info
-      associate (c => model%contact)
+      real(wp) :: pressure(contact%nc), shear(contact%nc)
+      integer :: status(contact%nc), info
+      associate (c => contact)
          call c%fields(pressure, shear, info)
          call c%status(status)
          g = this%file%group(final, 'contact')

@@ -22,6 +22,8 @@ module contact2d_explicit
    use contact2d_sys, only: sys_signal_pending
    use contact2d_sweep, only: sweep_t
    use contact2d_layout, only: layout_t
+   use contact2d_damping_estimate, only: damping_estimate_t
+   use contact2d_growth_guard, only: growth_guard_t
    implicit none
    private
    public :: explicit_t, damping_none, damping_given, damping_auto
@@ -34,12 +36,6 @@ module contact2d_explicit
    real(wp), parameter :: blowup_ratio = 1.0e3_wp
    !> Nodes per block of the node loops (fixed, so sums do not depend on the thread count).
    integer, parameter :: block_size = 1024
-   !> Growing-mode guard: rise factor per step of the alternating energy, rises in a row and
-   !> alternating ratio that mean a fast-growing mode; steps between the checks of the slow
-   !> test and its rises in a row under constant loads.
-   integer, parameter :: guard_interval = 10
-   real(wp), parameter :: guard_factor = 1.05_wp, guard_ratio = 2.0_wp
-   integer, parameter :: guard_rises = 12, guard_kin_rises = 30
 
    !> State and settings of the explicit integrator.
    type :: explicit_t
@@ -91,14 +87,8 @@ module contact2d_explicit
       real(wp), allocatable :: partial(:, :)  !< per-block sums (4, nblock)
       real(wp), allocatable :: cval(:)     !< curve values at t_n
       real(wp), allocatable :: cnext(:)    !< curve values at t_(n+1)
-      ! automatic damping: u and K u at the last estimate
-      real(wp), allocatable :: u_mark(:, :), f_mark(:, :), work(:, :)
-      integer, allocatable :: pres_elements(:)   !< elements touching a prescribed dof
-      !> the dofs of pres_elements (flattened), where K du_p is not zero
-      integer, allocatable :: pres_dofs(:)
-      !> per dof (flattened): 1 free, 0 prescribed, -1 free among pres_dofs (rayleigh_blocks)
-      real(wp), allocatable :: rmask(:)
-      real(wp), allocatable :: kdu(:, :)   !< K du_f at pres_dofs (update_damping) [N]
+      !> automatic damping: the Rayleigh-quotient estimate of omega_1 (contact2d_damping_estimate)
+      type(damping_estimate_t) :: damp
       ! energies (SPEC section 6) [mJ = N mm]
       real(wp) :: kinetic = 0              !< 1/2 v^(n+1/2) M v^(n+1/2)
       real(wp) :: strain = 0               !< 1/2 u^(n+1) K u^n (current when advance returns)
@@ -126,8 +116,7 @@ module contact2d_explicit
       logical :: guard = .false.           !< watch for a growing mode
       logical :: growing = .false.         !< a growing mode was detected (advance returned)
       real(wp) :: guard_after = 0          !< the energy test starts at this time (end of loading) [s]
-      real(wp) :: guard_alt = 0, guard_kin = 0   !< values at the last guard check
-      integer :: guard_rise = 0, guard_kin_rise = 0   !< consecutive rises
+      type(growth_guard_t) :: watch        !< the guard's rises in a row (contact2d_growth_guard)
       real(wp) :: time0 = 0                !< time at step0 (dt changes) [s]
       integer(i8) :: step0 = 0             !< step at the last change of dt
    contains
@@ -148,8 +137,7 @@ contains
       type(loading_t), intent(in) :: load
       real(wp), intent(in) :: dt, alpha
       integer, intent(in) :: damping, damping_interval
-      integer :: nnode, e, a, n, len, o
-      logical, allocatable :: touches(:), mark(:, :)
+      integer :: nnode, len, o
 
       nnode = size(stiff%mass)
       this%nnode = nnode
@@ -167,7 +155,7 @@ contains
       this%v(1:2, 1:nnode) => this%store(o + len + 1:o + len + 2*nnode)
       this%unew(1:2, 1:nnode) => this%store(o + 2*len + 1:o + 2*len + 2*nnode)
       this%fint(1:2, 1:nnode) => this%store(o + 3*len + 1:o + 3*len + 2*nnode)
-      allocate (this%fext(2, nnode), this%fc(2, nnode), this%work(2, nnode))
+      allocate (this%fext(2, nnode), this%fc(2, nnode), this%damp%work(2, nnode))
       this%u = 0; this%v = 0; this%unew = 0; this%fint = 0; this%fext = 0; this%fc = 0
       call this%sweep%init(stiff)
       this%mass = stiff%mass
@@ -177,29 +165,7 @@ contains
       allocate (this%partial(4, this%nblock))
       allocate (this%cval(load%ncurve), this%cnext(load%ncurve))
       call load%curve_values(0.0_wp, this%cnext)
-      if (damping == damping_auto) then
-         allocate (this%u_mark(2, nnode), this%f_mark(2, nnode))
-         this%u_mark = 0
-         this%f_mark = 0
-         this%work = 0
-         allocate (touches(size(stiff%conn, 2)))
-         do e = 1, size(touches)
-            touches(e) = any(load%free(:, stiff%conn(:, e)) == 0)
-         end do
-         this%pres_elements = pack([(e, e=1, size(touches))], touches)
-         ! the dofs where K du_p is not zero, and the mask of rayleigh_blocks
-         allocate (mark(2, nnode))
-         mark = .false.
-         do e = 1, size(this%pres_elements)
-            do a = 1, size(stiff%conn, 1)
-               mark(:, stiff%conn(a, this%pres_elements(e))) = .true.
-            end do
-         end do
-         this%pres_dofs = pack([(n, n=1, 2*nnode)], reshape(mark, [2*nnode]))
-         this%rmask = reshape(merge(-load%free, load%free, mark .and. load%free > 0), [2*nnode])
-         allocate (this%kdu(2, nnode))
-         this%kdu = 0
-      end if
+      if (damping == damping_auto) call this%damp%init(stiff, load, nnode)
    end subroutine explicit_init
 
    !> Run up to nsteps steps; stops early (blown_up = .true.) if the energy runs away, after a
@@ -294,7 +260,8 @@ contains
             exit
          end if
          if (this%guard) then
-            call guard_check(this)
+            this%growing = this%watch%check(this%alternating_energy, this%alternating, this%step, this%time, &
+                                            this%guard_after)
             if (this%growing) exit
          end if
          if (contact%stat /= 0 .or. sys_signal_pending() /= 0) exit
@@ -527,32 +494,6 @@ contains
    end subroutine special_correct
 
 
-   !> Growing-mode guard, every step: a mode above the stability limit changes sign every step
-   !> and grows geometrically, so its alternating energy rises at every step (guard_rises in a
-   !> row by guard_factor or more) and soon dominates the kinetic energy (alternating ratio
-   !> above guard_ratio; 4 for a pure sign-changing mode, near 0 for smooth motion); once the loads are constant and the damping takes energy out of
-   !> every mode, a slowly growing mode shows as alternating energy that rises at every check
-   !> of guard_interval steps (guard_kin_rises in a row).
-   subroutine guard_check(this)
-      type(explicit_t), intent(inout) :: this
-      if (this%alternating_energy > guard_factor*this%guard_alt .and. this%guard_alt > 0) then
-         this%guard_rise = this%guard_rise + 1
-      else
-         this%guard_rise = 0
-      end if
-      this%guard_alt = this%alternating_energy
-      if (mod(this%step, int(guard_interval, i8)) == 0) then
-         if (this%time > this%guard_after .and. this%alternating_energy > this%guard_kin .and. this%guard_kin > 0) then
-            this%guard_kin_rise = this%guard_kin_rise + 1
-         else
-            this%guard_kin_rise = 0
-         end if
-         this%guard_kin = this%alternating_energy
-      end if
-      this%growing = (this%guard_rise >= guard_rises .and. this%alternating > guard_ratio) .or. &
-                     this%guard_kin_rise >= guard_kin_rises
-   end subroutine guard_check
-
    !> A new time step from the next step on (the growing-mode fallback); the guard is reset.
    subroutine explicit_set_dt(this, dt)
       class(explicit_t), intent(inout) :: this
@@ -562,8 +503,7 @@ contains
       this%dt = dt
       this%alpha_next = min(this%alpha_next, 2/dt)
       this%growing = .false.
-      this%guard_rise = 0
-      this%guard_kin_rise = 0
+      call this%watch%reset()
    end subroutine explicit_set_dt
 
    !> Energies of the step from the sweep's partial sums (m v^2, -, u . K u, m dv^2), added in
@@ -616,94 +556,16 @@ contains
       end do
    end function mass_sum
 
-   !> Automatic damping (dynamic relaxation, SPEC section 5): alpha = 2 omega_1, with omega_1^2
-   !> the Rayleigh quotient of the free part du_f of the displacement increment since the last
-   !> estimate, du_f^T K du_f / du_f^T M du_f. Called right after f_int = K u^n, so (u, f_int)
-   !> and the stored mark are consistent pairs: K du_f = (f_int - f_mark) - K du_p, and K du_p
-   !> only involves the elements that touch a prescribed dof. K du_f is formed apart on their
-   !> dofs only (kdu) and put in f_mark as -K du_f; one pass over all dofs then takes
-   !> f_int - f_mark elsewhere, and f_mark itself there (rayleigh_blocks).
+   !> Automatic damping (dynamic relaxation, SPEC section 5): alpha = 2 omega_1 from the next
+   !> step on, estimated from (u^n, K u^n) right after the sweep (contact2d_damping_estimate).
    subroutine explicit_update_damping(this, stiff, load)
       class(explicit_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
       type(loading_t), intent(in) :: load
-      real(wp) :: num, den
-      integer :: p, b
-      ! K du = f_int - f_mark on the dofs of the elements that touch a prescribed dof; then
-      ! subtract K du_p there, du_p being zero but on the prescribed dofs
-      call pres_difference(size(this%pres_dofs), this%pres_dofs, this%fint, this%f_mark, this%kdu)
-      do p = 1, load%npres
-         this%work(load%pcomp(p), load%pnode(p)) = this%u(load%pcomp(p), load%pnode(p)) &
-                                                   - this%u_mark(load%pcomp(p), load%pnode(p))
-      end do
-      call stiff%apply_elements(this%pres_elements, this%work, this%kdu, subtract=.true.)
-      do p = 1, load%npres
-         this%work(load%pcomp(p), load%pnode(p)) = 0
-      end do
-      call pres_negate(size(this%pres_dofs), this%pres_dofs, this%kdu, this%f_mark)
-      ! du_f^T K du_f and du_f^T M du_f by blocks; the marks move to (u, f_int)
-      call rayleigh_blocks(2*this%layout%nowned, this%nblock, this%u, this%fint, this%rmask, this%mdof, &
-                           this%u_mark, this%f_mark, this%partial)
-      num = 0
-      den = 0
-      do b = 1, this%nblock
-         num = num + this%partial(1, b)
-         den = den + this%partial(2, b)
-      end do
-      if (num > 0 .and. den > 0) this%alpha_next = min(2*sqrt(num/den), 2/this%dt)
+      ! the Rayleigh sums over the nodes this process owns (contact2d_layout)
+      call this%damp%estimate(stiff, load, this%layout%nowned, this%nblock, block_size, this%u, this%fint, &
+                              this%mdof, this%partial, this%dt, this%alpha_next)
    end subroutine explicit_update_damping
-
-   !> d = a - f at the listed dofs (flattened arrays).
-   subroutine pres_difference(n, dof, a, f, d)
-      integer, intent(in) :: n, dof(n)
-      real(wp), intent(in) :: a(*), f(*)
-      real(wp), intent(inout) :: d(*)
-      integer :: q
-      do q = 1, n
-         d(dof(q)) = a(dof(q)) - f(dof(q))
-      end do
-   end subroutine pres_difference
-
-   !> f = -d at the listed dofs (flattened arrays).
-   subroutine pres_negate(n, dof, d, f)
-      integer, intent(in) :: n, dof(n)
-      real(wp), intent(in) :: d(*)
-      real(wp), intent(inout) :: f(*)
-      integer :: q
-      do q = 1, n
-         f(dof(q)) = -d(dof(q))
-      end do
-   end subroutine pres_negate
-
-   !> Per block: sum of du_f kdu and of m du_f^2 with du_f = (u - u_mark) |mask| and
-   !> kdu = max(mask, 0) f_int - f_mark: f_int - f_mark where mask = 1 (exact: 1 f_int = f_int),
-   !> -f_mark where mask = -1 (exact: 0 f_int - f_mark, also if contracted to an FMA), du_f = 0
-   !> where mask = 0; then u_mark = u, f_mark = f_int. Block sums are added in order by the
-   !> caller (thread-independent bits).
-   subroutine rayleigh_blocks(ndof, nblock, u, fint, mask, mdof, u_mark, f_mark, partial)
-      integer, intent(in) :: ndof, nblock
-      real(wp), intent(in) :: u(ndof), fint(ndof), mask(ndof), mdof(ndof)
-      real(wp), intent(inout) :: u_mark(ndof), f_mark(ndof)
-      real(wp), intent(inout) :: partial(4, nblock)
-      integer :: b, i
-      real(wp) :: du, num, den
-      !$omp parallel do schedule(static) private(i, du, num, den) if(ndof >= 2*omp_min_nodes)
-      do b = 1, nblock
-         num = 0
-         den = 0
-         !$omp simd private(du) reduction(+:num, den)
-         do i = 2*(b - 1)*block_size + 1, min(2*b*block_size, ndof)
-            du = (u(i) - u_mark(i))*abs(mask(i))
-            num = num + du*(max(mask(i), 0.0_wp)*fint(i) - f_mark(i))
-            den = den + mdof(i)*du*du
-            u_mark(i) = u(i)
-            f_mark(i) = fint(i)
-         end do
-         partial(1, b) = num
-         partial(2, b) = den
-      end do
-      !$omp end parallel do
-   end subroutine rayleigh_blocks
 
    !> Out-of-balance force on the free dofs at t_n (contact forces included), relative to the
    !> largest of the reactions, the loads and the contact forces (SPEC section 5), or to `floor`
