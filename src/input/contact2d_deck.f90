@@ -34,7 +34,7 @@ module contact2d_deck
    use contact2d_deck_loads, only: edge_load_cfg_t, edge_load_variables, edge_load_cfg_read, &
                                    edge_load_cfg_not_finite, edge_load_cfg_validate, edge_load_cfg_echo
    use contact2d_deck_contact, only: contact_cfg_t, contact_variables, contact_cfg_read, contact_cfg_not_finite, &
-                                     contact_cfg_validate, contact_cfg_echo
+                                     contact_cfg_validate, contact_cfg_echo, contact_cfg_publish
    use contact2d_deck_solver, only: solver_cfg_t, solver_variables, solver_logicals, solver_cfg_read, &
                                     solver_cfg_not_finite, solver_cfg_validate, solver_cfg_echo
    use contact2d_deck_initial, only: initial_cfg_t, initial_variables, initial_cfg_read, initial_cfg_not_finite, &
@@ -570,6 +570,8 @@ contains
             return
          end if
       end if
+      ! the obstacles' and friction laws' values under the names the model reads
+      call contact_cfg_publish(deck%contact)
       stat = 0
       errmsg = ''
    end subroutine validate

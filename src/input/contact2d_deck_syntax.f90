@@ -12,7 +12,7 @@ module contact2d_deck_syntax
    implicit none
    private
    public :: unset, unset_int, max_stages, max_points, line_len, blanks, override_t
-   public :: syntax_only, assigned_names, is_name_char, is_letter
+   public :: syntax_only, assigned_names, is_name_char, is_letter, assignment_t, split_assignments
    public :: read_failed, too_long, nearest_names
    public :: edges, edge_id, place_problem, place_text, range_text
    public :: kv, quoted, reals, ends_with, upper2
@@ -38,6 +38,15 @@ module contact2d_deck_syntax
       character(len=:), allocatable :: spec
    end type override_t
 
+   !> One assignment of a group's text, as namelist records that a reader of that group can
+   !> read on their own: '&group', the assignment's text (its lines, comments kept), '/'.
+   type :: assignment_t
+      !> the variable's name in lower case, without subscript; '' for text before the first
+      !> assignment (no assignment: the group's own reader reports what it is)
+      character(len=:), allocatable :: name
+      character(len=line_len + 16), allocatable :: records(:)
+   end type assignment_t
+
 contains
 
    !> Side id 1..4 of an edge name, 0 if unknown.
@@ -55,9 +64,19 @@ contains
    function assigned_names(code) result(names)
       character(len=*), intent(in) :: code
       character(len=line_len), allocatable :: names(:)
-      integer :: pos, k, close
+      integer, allocatable :: starts(:)
+      call find_assignments(code, names, starts)
+   end function assigned_names
+
+   !> The assignments of a line of namelist syntax: their designators (as assigned_names) and
+   !> the column where each name starts.
+   subroutine find_assignments(code, names, starts)
+      character(len=*), intent(in) :: code
+      character(len=line_len), allocatable, intent(out) :: names(:)
+      integer, allocatable, intent(out) :: starts(:)
+      integer :: pos, k, close, first
       character(len=:), allocatable :: designator
-      allocate (names(0))
+      allocate (names(0), starts(0))
       pos = 1
       do while (pos <= len(code))
          ! a name starts with a letter after a blank or comma (not after '&': a group name)
@@ -77,6 +96,7 @@ contains
             k = k + 1
          end do
          designator = lower(code(pos:k - 1))
+         first = pos
          pos = k
          k = next_nonblank(code, k)
          if (k <= len(code)) then
@@ -88,7 +108,10 @@ contains
             end if
          end if
          if (k > len(code)) cycle
-         if (code(k:k) == '=') names = [character(len=line_len) :: names, designator]
+         if (code(k:k) == '=') then
+            names = [character(len=line_len) :: names, designator]
+            starts = [starts, first]
+         end if
       end do
    contains
       pure integer function next_nonblank(s, from)
@@ -112,7 +135,7 @@ contains
             if (scan(s(m:m), blanks) == 0) t = t//s(m:m)
          end do
       end function without_blanks
-   end function assigned_names
+   end subroutine find_assignments
 
    !> A line with the text inside quotes and a '!' comment outside quotes blanked, so that the
    !> names, '=', '&' and '/' left in it are namelist syntax (the quote characters are kept).
@@ -145,6 +168,137 @@ contains
       end do
       if (present(open_at)) open_at = opened
    end function syntax_only
+
+   !> The assignments of one group occurrence (its lines from '&group' to the closing '/', as
+   !> split_blocks found them), in the order of the text: each from its name to the next name
+   !> or the closing '/'. Quotes are followed across lines, so that text inside a string is
+   !> never taken for a name. Non-blank text between the group name and the first assignment
+   !> is one more part, with the name ''.
+   function split_assignments(blk, group) result(parts)
+      character(len=*), intent(in) :: blk(:)
+      character(len=*), intent(in) :: group
+      type(assignment_t), allocatable :: parts(:)
+      character(len=len(blk)) :: code(size(blk))
+      character(len=line_len), allocatable :: names(:), here(:)
+      integer, allocatable :: at_line(:), at_col(:), cols(:)
+      integer :: l, c0, l_end, c_end, k, slash
+      character(len=1) :: quote
+      ! the syntax of every line, the quote state carried from one line to the next
+      quote = ' '
+      do l = 1, size(blk)
+         code(l) = code_of(blk(l), quote)
+      end do
+      ! the text starts after '&group' on the first line and ends before the closing '/'
+      c0 = index(code(1), '&') + 1
+      do while (c0 <= len(code(1)))
+         if (.not. is_name_char(code(1)(c0:c0))) exit
+         c0 = c0 + 1
+      end do
+      l_end = size(blk)
+      c_end = len(blk) + 1
+      do l = 1, size(blk)
+         k = 1
+         if (l == 1) k = c0
+         slash = index(code(l)(k:), '/')
+         if (slash > 0) then
+            l_end = l
+            c_end = k + slash - 1
+            exit
+         end if
+      end do
+      allocate (names(0), at_line(0), at_col(0))
+      do l = 1, l_end
+         call find_assignments(code(l), here, cols)
+         do k = 1, size(cols)
+            if (l == 1 .and. cols(k) < c0) cycle
+            if (l == l_end .and. cols(k) >= c_end) cycle
+            names = [character(len=line_len) :: names, here(k)]
+            at_line = [at_line, l]
+            at_col = [at_col, cols(k)]
+         end do
+      end do
+      allocate (parts(0))
+      if (size(names) == 0) then
+         if (has_code(1, c0, l_end, c_end)) parts = [part('', 1, c0, l_end, c_end)]
+         return
+      end if
+      if (has_code(1, c0, at_line(1), at_col(1))) parts = [part('', 1, c0, at_line(1), at_col(1))]
+      do k = 1, size(names)
+         if (k < size(names)) then
+            parts = [parts, part(base(names(k)), at_line(k), at_col(k), at_line(k + 1), at_col(k + 1))]
+         else
+            parts = [parts, part(base(names(k)), at_line(k), at_col(k), l_end, c_end)]
+         end if
+      end do
+   contains
+      !> a line with quoted text and comments blanked; quote: the quote open at its start and end
+      function code_of(line, quote) result(c)
+         character(len=*), intent(in) :: line
+         character(len=1), intent(inout) :: quote
+         character(len=len(line)) :: c
+         integer :: j
+         c = line
+         do j = 1, len(line)
+            if (quote /= ' ') then
+               if (line(j:j) == quote) then
+                  quote = ' '
+               else
+                  c(j:j) = ' '
+               end if
+            else if (line(j:j) == "'" .or. line(j:j) == '"') then
+               quote = line(j:j)
+            else if (line(j:j) == '!') then
+               c(j:) = ' '
+               exit
+            end if
+         end do
+      end function code_of
+      !> the text from (l1, c1) up to (l2, c2), excluded, has syntax (not only blanks/comments)
+      logical function has_code(l1, c1, l2, c2)
+         integer, intent(in) :: l1, c1, l2, c2
+         integer :: m
+         has_code = .false.
+         do m = l1, l2
+            if (m == l1 .and. m == l2) then
+               has_code = verify(code(m)(c1:c2 - 1), blanks) > 0
+            else if (m == l1) then
+               has_code = verify(code(m)(c1:), blanks) > 0
+            else if (m == l2) then
+               has_code = verify(code(m)(1:c2 - 1), blanks) > 0
+            else
+               has_code = verify(code(m), blanks) > 0
+            end if
+            if (has_code) return
+         end do
+      end function has_code
+      !> the records '&group', the text from (l1, c1) up to (l2, c2) excluded, '/'
+      function part(name, l1, c1, l2, c2) result(p)
+         character(len=*), intent(in) :: name
+         integer, intent(in) :: l1, c1, l2, c2
+         type(assignment_t) :: p
+         integer :: m
+         p%name = name
+         allocate (p%records(l2 - l1 + 3))
+         p%records(1) = '&'//group
+         do m = l1, l2
+            if (m == l1 .and. m == l2) then
+               p%records(2) = blk(m)(c1:c2 - 1)
+            else if (m == l1) then
+               p%records(2) = blk(m)(c1:)
+            else if (m == l2) then
+               p%records(m - l1 + 2) = blk(m)(1:c2 - 1)
+            else
+               p%records(m - l1 + 2) = blk(m)
+            end if
+         end do
+         p%records(size(p%records)) = '/'
+      end function part
+      pure function base(designator) result(b)
+         character(len=*), intent(in) :: designator
+         character(len=:), allocatable :: b
+         b = trim(designator(1:scan(designator//'(', '(') - 1))
+      end function base
+   end function split_assignments
 
    pure logical function is_name_char(ch)
       character(len=1), intent(in) :: ch
