@@ -123,7 +123,7 @@ def getfem_time(src, out, level, friction, repeats):
 def general_path(exe, out, repeats, levels=(1,), base=None):
     """ns per element-step of the step loop (1 thread, fixed steps, medians of interleaved runs) on
     the Hertz Gmsh meshes (inputs/hertz_cylinder_p1.nml and hertz_indenter_p1.nml at each level:
-    the general path, src/element/contact2d_rows.f90) and on a built-in structured mesh of about
+    the general path, src/kernels/contact2d_rows.f90) and on a built-in structured mesh of about
     as many elements (the paper deck with nx x ny set accordingly: the structured sweep), and
     their ratio (target: <= 1.5). With base, the Hertz runs are repeated with that
     binary too (the previous commit), interleaved."""

@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 #: the folders of src/, lowest first (docs/architecture.md lists the same order)
-LAYERS = ("common", "input", "model", "kernels", "contact", "solvers", "output", "app")
+LAYERS = ("common", "model", "input", "kernels", "contact", "solvers", "output", "app")
 
 USE = re.compile(r"^\s*use\s*(?:,\s*(?:non_)?intrinsic\s*::\s*|::\s*)?(contact2d_\w+)", re.I | re.M)
 MODULE = re.compile(r"^\s*module\s+(?!procedure\b)(contact2d_\w+)\s*$", re.I | re.M)

@@ -13,7 +13,7 @@ the relaxation (about (omega_max / omega_1) ln(1 / tol) / 2 steps) falls by 4 / 
 mass / body mass) at least (the added mass lowers omega_1 by at most that factor) -- more than
 2 for the added mass allowed here (<= 1 body mass, checked).
 
-The general (Gmsh) path's sweep (src/element/contact2d_rows.f90) sums in fixed chunks: one and two
+The general (Gmsh) path's sweep (src/kernels/contact2d_rows.f90) sums in fixed chunks: one and two
 OpenMP threads must give the same bits, and so must a run whose thread count changes while it runs
 (CONTACT2D_THREAD_SWITCHES: the team, then one thread, then the team ..., at the listed steps).
 Checked on hertz_cylinder_p1 at level 1 (5721 nodes, above the 4096-node threshold of the parallel
