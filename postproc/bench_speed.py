@@ -17,7 +17,7 @@ exit 2) unless --force, and it is written beside its name and moved into place
 (contact2d.outfile). Timings are wall-clock on a
 shared machine: medians, and ratios of two things measured side by side.
 
-More figures (each section can be chosen with --sections; issue5 is the list above):
+More figures (each section can be chosen with --sections; speed is the list above):
   base     ns per element-step on one thread, this binary against --base-exe (the previous
            commit built apart), interleaved runs, median ratio;
   steps    steps and wall time to the end state with the default deck, solver:dt_limit =
@@ -397,8 +397,8 @@ def main():
     ap.add_argument("--repeats", type=int, default=7, help="runs per timing (median; default 7)")
     ap.add_argument("--out", default="study/bench", help="work directory")
     ap.add_argument("--no-getfem", action="store_true", help="skip the GetFEM reference")
-    ap.add_argument("--sections", default="issue5,base,steps,mass,threads,static,general",
-                    help="comma list of issue5, base, steps, mass, threads, static, general (default all)")
+    ap.add_argument("--sections", default="speed,base,steps,mass,threads,static,general",
+                    help="comma list of speed, base, steps, mass, threads, static, general (default all)")
     ap.add_argument("--base-exe", help="the previous commit's contact2d, for the base section")
     ap.add_argument("--thread-levels", default="5", help="levels of the threads section (default 5)")
     ap.add_argument("--general-levels", default="1-2", help="Hertz mesh levels of the general section (default 1-2)")
@@ -412,7 +412,7 @@ def main():
     args = ap.parse_args()
     sections = set(args.sections.split(","))
     out = out_dir(args.out, PROG)
-    if "issue5" in sections:
+    if "speed" in sections:
         refuse_existing(PROG, [out / "bench.json"], args.force)
     print(machine_line(), flush=True)
     exe = find_exe(args.exe)
@@ -435,7 +435,7 @@ def main():
         section_static(exe, out, levels, "1")
     if "general" in sections:
         general_path(exe, out, args.repeats, parse_levels(args.general_levels), args.base_exe)
-    if "issue5" not in sections:
+    if "speed" not in sections:
         return
 
     rows = []

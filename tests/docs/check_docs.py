@@ -3,7 +3,7 @@
 
 - a page (docs/*.md, README.md) is over 40 000 bytes: a manual page a user reads, not a log;
 - docs (docs/*.md, README.md) or code (src/, tests/, postproc/, inputs/, cmake/, .ci/,
-  CMakeLists.txt) cite "issue N" (case-insensitive 'issue [0-9]+'): say what and why, cite SPEC §N
+  CMakeLists.txt) cite "issue N" (case-insensitive 'issue ?#?[0-9]+'): say what and why, cite SPEC §N
   or a paper; the history of a figure belongs in git;
 - a relative link or image in docs/*.md or README.md points to a file that does not exist
   (links with a scheme, such as https:, and links to an anchor of the same page are not checked;
@@ -18,7 +18,7 @@ import sys
 from pathlib import Path
 
 MAX_BYTES = 40_000
-ISSUE = re.compile(r"issue [0-9]+", re.IGNORECASE)
+ISSUE = re.compile(r"issue ?#?[0-9]+", re.IGNORECASE)
 # [text](target "title") and ![alt](target); the target ends at whitespace or ')'
 INLINE_LINK = re.compile(r"!?\[(?:[^\[\]]|\[[^\[\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+[\"'(][^)]*)?\)")
 # [label]: target

@@ -352,7 +352,7 @@ class Products(Base):
              ("speed_accuracy.py", ["--no-getfem"], "speed_accuracy.csv"),
              ("stability_sweep.py", ["--methods", "elastic", "--ratios", "0.5:0.5:0.1"], "stability.csv"),
              ("stability_sweep.py", ["--methods", "elastic", "--ratios", "0.5:0.5:0.1"], "stability.png"),
-             ("bench_speed.py", ["--sections", "issue5", "--levels", "0", "--no-getfem"], "bench.json"),
+             ("bench_speed.py", ["--sections", "speed", "--levels", "0", "--no-getfem"], "bench.json"),
              ("bench_static.py", ["--levels", "0"], "static_k0.h5"),
              ("bench_static.py", ["--levels", "0"], "explicit_k0.h5"))
 
