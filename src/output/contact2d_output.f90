@@ -243,7 +243,8 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       integer(hid_t) :: root, g
       real(wp), allocatable :: stress(:, :), reaction(:, :)
-      integer :: e, k, a
+      real(wp) :: dmat(3, 3)
+      integer :: e, k, a, b
 
       call this%flush_history()
       do k = 1, nseries
@@ -261,10 +262,14 @@ contains
       call this%file%attr(root, 'final_time', state%time)
 
       allocate (stress(3, model%mesh%nel))
-      do e = 1, model%mesh%nel
-         stress(:, e) = model%stiff%element%stress_average(model%mesh%element_coordinates(e), &
-                                                           model%material%dmat(), &
-                                                           [(state%u(:, model%mesh%conn(a, e)), a=1, 4)])
+      ! each body's elements with that body's material
+      do b = 1, size(model%bodies)
+         dmat = model%bodies(b)%material%dmat()
+         do k = 1, size(model%bodies(b)%elements)
+            e = model%bodies(b)%elements(k)
+            stress(:, e) = model%stiff%element%stress_average(model%mesh%element_coordinates(e), dmat, &
+                                                              [(state%u(:, model%mesh%conn(a, e)), a=1, 4)])
+         end do
       end do
       reaction = (state%fint - state%fext)*(1 - model%load%free)
       g = this%file%group(root, 'final')

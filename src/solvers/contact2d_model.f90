@@ -28,7 +28,6 @@ module contact2d_model
    !> from then on. What changes during a run is in the state (contact2d_state).
    type :: model_t
       type(mesh_t) :: mesh
-      type(material_t) :: material   !< the material of the one body (bodies(1)%material)
       !> the bodies (contact2d_body): one today, the whole mesh
       type(body_t), allocatable :: bodies(:)
       !> the contact pairs (contact2d_pair): none, or one (the deck's &contact) today
@@ -59,6 +58,7 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       integer :: i, nx, ny, nflip
+      type(material_t) :: material
       !> outward normals of the sides bottom, right, top, left
       real(wp), parameter :: outward(2, 4) = reshape([0.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
                                                       -1.0_wp, 0.0_wp], [2, 4])
@@ -85,13 +85,15 @@ contains
          ny = deck%mesh%ny*2**deck%mesh%level
          call model%mesh%init_rectangle(deck%mesh%lx, deck%mesh%ly, nx, ny)
       end if
-      call material_init(model%material, deck%material%young, deck%material%poisson, &
+      ! the one body: every element, the deck's material; the element matrices and masses are
+      ! formed with the body's material (contact2d_stiffness)
+      call material_init(material, deck%material%young, deck%material%poisson, &
                          deck%material%density, stat, errmsg)
       if (stat /= 0) return
-      call model%stiff%init(model%mesh, model%material, stat, errmsg)
-      if (stat /= 0) return
       allocate (model%bodies(1))
-      call body_init(model%bodies(1), 'body', [(i, i=1, model%mesh%nel)], model%material)
+      call body_init(model%bodies(1), 'body', [(i, i=1, model%mesh%nel)], material)
+      call model%stiff%init(model%mesh, model%bodies(1)%material, stat, errmsg)
+      if (stat /= 0) return
       allocate (model%pairs(0))
       ! derived quantities checked before use, naming what they come from (contact2d_checks)
       stat = 1
