@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The source folders are layers: a module uses only modules of its own folder or of the folders
 before it in LAYERS (docs/architecture.md, "Layers"). Fails, naming each upward use, when a
-Fortran `use contact2d_...` or a C file's call crosses the order the wrong way; and when a source
-file sits in a folder that is not a layer.
+Fortran `use contact2d_...` crosses the order the wrong way, and when a source file (Fortran or
+C) sits in a folder that is not a layer. The calls of the C files are not checked.
 
     check_layers.py SOURCE_DIR
 """
