@@ -15,7 +15,7 @@ difference of the end state's displacement to the first count's, max|du| / max|u
   2. the explicit run's wall time to its quasi-static end state (the shipped deck, relative
      residual 1e-8), median of --explicit-repeats runs, interleaved with the static runs so that
      both see the same machine load, and the ratio explicit / static;
-  3. the issue-14 targets: static solve within 2x of 0.43 s (level 5) and 1.9 s (level 6), PASS/MISS.
+  3. the static targets: static solve within 2x of 0.43 s (level 5) and 1.9 s (level 6), PASS/MISS.
 Timings are wall-clock on a possibly shared machine: medians, ratios of things measured side by side;
 the CPU time of the whole static run (user + system, from the child's resource usage) is printed
 beside them, as it is less sensitive to the machine's load, with the load average before and after

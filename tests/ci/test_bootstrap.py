@@ -3,7 +3,7 @@
 .ci/bootstrap is copied into an empty stand-in repository (it works from its own location), with
 stand-ins for dpkg-query (every package installed), cmake, ctest and the program on PATH that
 record their arguments; the stand-in `cmake --build` prints 100 lines of make-style progress and
-creates bin/contact2d. Checked (the issue: `run` was silent for 6 minutes on a fresh machine while
+creates bin/contact2d. Checked (a fresh-machine fault: `run` was silent for 6 minutes on a fresh machine while
 it built every unit-test executable before a 1.1 s run):
 - `build` and `run` build only the program's targets (--target contact2d contact2d-solver), `test`
   builds everything (no --target) and runs ctest;

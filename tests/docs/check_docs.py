@@ -18,7 +18,7 @@ import sys
 from pathlib import Path
 
 MAX_BYTES = 40_000
-ISSUE = re.compile(r"issue ?#?[0-9]+", re.IGNORECASE)
+ISSUE = re.compile(r"issue[ #-]?#?[0-9]+", re.IGNORECASE)
 # [text](target "title") and ![alt](target); the target ends at whitespace or ')'
 INLINE_LINK = re.compile(r"!?\[(?:[^\[\]]|\[[^\[\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+[\"'(][^)]*)?\)")
 # [label]: target

@@ -40,7 +40,7 @@ def body(t):
     # The centre pressure's error is the graded level-0 mesh's discretisation plus Hertz's
     # half-space idealisation of a finite body (a/R = 0.044, 0.052). Measured |p0_run/p0 - 1|:
     # indenter 0.059 % (P1), 0.023 % (P0); cylinder 0.59 % (P1), 0.48 % (P0), the static engine the
-    # same. 1 % is the largest with a margin of 1.7 (was 2 %, the acceptance).
+    # same. 1 % is the largest with a margin of 1.7 (2 % was the acceptance bound).
     t.check_close(run, "pressure at the centre vs p0", m["p0"], m["p0_fe"], rtol=0.01,
                   reason="mesh + half-space idealisation; measured <= 0.59 % (cylinder P1)")
     t.info(run, "L2 error of p on Gamma_c / L2 norm of p", "%.4g" % m["l2_rel"])

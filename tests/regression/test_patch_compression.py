@@ -58,7 +58,7 @@ def body(t):
                       reason="round-off of sums of abscissa differences")
 
         # the analytic answer
-        reason = "converged to tol_residual 1e-11; the issue asks 1e-8 relative"
+        reason = "converged to tol_residual 1e-11; the bound is 1e-8 relative"
         t.check_close(run, "%s pressure at every %s" % (mult, "node" if mult == "P1" else "dual cell"),
                       P_EXACT, pressure, rtol=1e-8, reason=reason)
         t.check_close(run, "nodal normal force = p w_i", P_EXACT * w, fn, rtol=1e-8,

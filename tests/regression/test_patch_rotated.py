@@ -41,7 +41,7 @@ def body(t):
                   reason="Gmsh places nodes on the line to round-off")
     t.check_close(run, "normals = -e2", np.tile(-E2, (len(nodes), 1)), normal, atol=1e-15, reason="round-off")
     t.check_close(run, "gaps = 0", 0.0, gap, atol=1e-12, reason="nodes on the plane to round-off")
-    reason = "converged to tol_residual 1e-13; the issue asks 1e-10"
+    reason = "converged to tol_residual 1e-13; the bound is 1e-10"
     t.check_close(run, "%s pressure = p" % mult, P, pressure, rtol=1e-10, reason=reason)
     w = c2dtest.nodal_weights(s)
     t.check_close(run, "nodal normal force = p w_i", P * w, fn, atol=1e-10 * P * float(np.max(w)), reason=reason)

@@ -6,7 +6,7 @@ Facts checked, each recomputed here from the HDF5 file (numpy only) rather than 
    0-4: non-penetration (P1 per node, P0 per dual cell), non-negative pressure, complementarity,
    nodal Tresca (|F_t| <= s w; stuck nodes do not move; slipping nodes move with F_t), and
    equilibrium K u = f + F_c on the free dofs with K formed here element by element
-   (static_kkt.py, from the HDF5 contents alone). Bound 1e-12 relative (the issue's acceptance; a
+   (static_kkt.py, from the HDF5 contents alone). Bound 1e-12 relative (the acceptance bound; a
    direct solve leaves round-off of 1e-13 or less here). The file's own kkt_* attributes are also
    held to 1e-12.
 1b. The same KKT check on Gmsh meshes: hertz_cylinder P1/P0 (graded mesh, curved Gamma_c) and

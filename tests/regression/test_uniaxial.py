@@ -37,7 +37,7 @@ def body(t):
     t.info(run, "eps_xx, eps_yy (exact)", "%.10g, %.10g" % (eps_xx, eps_yy))
     # 1e-8: the run stops at tol_residual = 1e-10 (relative out-of-balance force), so the
     # displacement error is ~1e-10 times a condition factor well below 100 on an 8 x 4 mesh.
-    reason = "converged to tol_residual 1e-10; the issue asks 1e-8 relative"
+    reason = "converged to tol_residual 1e-10; the bound is 1e-8 relative"
     t.check_close(run, "final displacement vs exact linear field (max-norm)", u_exact, u,
                   rtol=1e-8, scale=float(np.max(np.abs(u_exact))), reason=reason)
     t.check_close(run, "u_x vs eps_xx x", u_exact[:, 0], u[:, 0], rtol=1e-8,
