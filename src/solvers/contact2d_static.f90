@@ -150,12 +150,9 @@ contains
       type(model_t), intent(in) :: model
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      integer :: k, c, i, n, nint, nnz, e, a, b, ia, ib, ncd
-      integer, allocatable :: ti(:), tj(:)
-      real(wp), allocatable :: tx(:), l22(:, :), xy(:, :)
-      integer, allocatable :: order(:), group(:)
+      real(wp), allocatable :: l22(:, :)
+      integer, allocatable :: order(:)
       integer(i8) :: t0, t1, rate
-      logical, allocatable :: is_contact(:)
 
       call system_clock(t0, rate)
       stat = 1
@@ -165,6 +162,54 @@ contains
                   "is not supported with solver:method = 'static'"
          return
       end if
+      call setup_numbering(this, model, stat, errmsg)
+      if (stat /= 0) return
+      call setup_factor(this, model, stat, errmsg)
+      if (stat /= 0) return
+      call system_clock(t1)
+      this%time_factor = real(t1 - t0, wp)/rate
+      t0 = t1
+
+      ! A = P^T B S B^T P from S = L22 L22^T
+      if (this%m > 0) then
+         allocate (l22(this%ncdof, this%ncdof))
+         allocate (order(this%ncdof))
+         call this%chol%trailing(l22, order)
+         call condense(this, model, l22, order, stat, errmsg)
+         if (stat /= 0) return
+      end if
+      allocate (this%u(2, this%nnode), this%fext(2, this%nnode), this%fint(2, this%nnode), &
+                this%fc(2, this%nnode), this%lambda(this%m), this%state(this%m), &
+                this%fn(this%nc), this%ft(this%nc), this%mu(this%nc))
+      this%u = 0
+      this%fext = 0
+      this%fint = 0
+      this%fc = 0
+      this%lambda = 0
+      this%state = -99       ! no state yet: the first increment starts from lambda = 0
+      this%fn = 0
+      this%ft = 0
+      this%mu = 0
+      call system_clock(t1)
+      this%time_condense = real(t1 - t0, wp)/rate
+      stat = 0
+   end subroutine static_setup
+
+   !> The numbering: free dofs of the interior first, then those of the contact nodes along
+   !> Gamma_c (so that CHOLMOD eliminates them last and L22 gives their Schur complement), and
+   !> the contact unknowns (the normal of every contact node, then the tangent where both of its
+   !> dofs are free) with their directions and Tresca limits. stat 1: a contact node with a
+   !> prescribed dof that is neither its normal nor its tangent.
+   subroutine setup_numbering(this, model, stat, errmsg)
+      class(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: k, c, i, n, nint, ncd
+      logical, allocatable :: is_contact(:)
+
+      stat = 1
+      errmsg = ''
       this%nnode = model%mesh%nnode
       associate (free => model%load%free, ct => model%contact)
          allocate (this%dof(2, this%nnode), is_contact(this%nnode))
@@ -229,7 +274,24 @@ contains
             return
          end if
       end associate
+      stat = 0
+   end subroutine setup_numbering
 
+   !> The factorisation: K_ff assembled from the element matrices (lower triangle, as triplets)
+   !> and factorised by CHOLMOD with the contact dofs last, each dof grouped with its node and
+   !> placed at its coordinates for the ordering. stat 1: nothing to solve or a singular K_ff
+   !> (a free rigid-body mode).
+   subroutine setup_factor(this, model, stat, errmsg)
+      class(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: k, c, n, nnz, e, a, b, ia, ib
+      integer, allocatable :: ti(:), tj(:), group(:)
+      real(wp), allocatable :: tx(:), xy(:, :)
+
+      stat = 1
+      errmsg = ''
       ! K_ff from the element matrices, lower triangle (row >= column)
       nnz = 0
       do e = 1, model%mesh%nel
@@ -284,35 +346,7 @@ contains
                   '): the static engine needs Dirichlet data that hold the body without contact'
          return
       end if
-      if (stat /= 0) return
-      call system_clock(t1)
-      this%time_factor = real(t1 - t0, wp)/rate
-      t0 = t1
-
-      ! A = P^T B S B^T P from S = L22 L22^T
-      if (this%m > 0) then
-         allocate (l22(this%ncdof, this%ncdof))
-         allocate (order(this%ncdof))
-         call this%chol%trailing(l22, order)
-         call condense(this, model, l22, order, stat, errmsg)
-         if (stat /= 0) return
-      end if
-      allocate (this%u(2, this%nnode), this%fext(2, this%nnode), this%fint(2, this%nnode), &
-                this%fc(2, this%nnode), this%lambda(this%m), this%state(this%m), &
-                this%fn(this%nc), this%ft(this%nc), this%mu(this%nc))
-      this%u = 0
-      this%fext = 0
-      this%fint = 0
-      this%fc = 0
-      this%lambda = 0
-      this%state = -99       ! no state yet: the first increment starts from lambda = 0
-      this%fn = 0
-      this%ft = 0
-      this%mu = 0
-      call system_clock(t1)
-      this%time_condense = real(t1 - t0, wp)/rate
-      stat = 0
-   end subroutine static_setup
+   end subroutine setup_factor
 
    !> S = L22 L22^T (LAPACK dlauum on the index-reversed factor), then A = P^T B S B^T P:
    !> B rotates each contact node's free dofs to (n, t), P = diag(D^-1, I) for P0 (I for P1).
