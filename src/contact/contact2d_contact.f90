@@ -128,9 +128,8 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       logical, allocatable :: keep(:)
       real(wp), allocatable :: cand_gap(:), cand_nu(:, :)
-      real(wp) :: e(2), tol, lmax
-      integer :: i, k, nd, ntouch
-      character(len=:), allocatable :: ids
+      real(wp) :: tol, lmax
+      integer :: i
 
       stat = 1
       this%active = .true.
@@ -148,6 +147,50 @@ contains
       lmax = maxval(maxval(x, dim=2) - minval(x, dim=2))
       tol = 1.0e-12_wp*lmax
 
+      call init_nodes(this, cfg, candidates, free, cand_nu, keep, warnings, stat, errmsg)
+      if (stat /= 0) return
+      call init_geometry(this, cfg, x, free, mass, cand_gap, keep, tol, stat, errmsg)
+      if (stat /= 0) return
+
+      allocate (this%rec(nrec, this%nc))
+      this%rec(rec_nx:rec_ny, :) = this%normal
+      this%rec(rec_tx:rec_ty, :) = this%tangent
+      this%rec(rec_gap, :) = this%gap
+      this%rec(rec_mass, :) = this%mass
+      this%rec(rec_cmass, :) = 0
+
+      call init_friction(this, cfg, stat, errmsg)
+      if (stat /= 0) return
+
+      this%penalty = cfg%method == 'penalty'
+      this%penalty_stiffness = cfg%penalty_stiffness
+      if (cfg%multiplier == 'P0') then
+         this%multiplier = multiplier_p0
+         call setup_p0(this)
+      else
+         this%multiplier = multiplier_p1
+      end if
+      stat = 0
+      errmsg = ''
+   end subroutine contact_init
+
+   !> The contact nodes: the candidates less those whose normal displacement is prescribed
+   !> (warned: their reaction is a Dirichlet one), with their normals n_i = -nu_i and tangents
+   !> t_i = (-n2, n1); a warning when the candidates touch the Dirichlet boundary (the paper's
+   !> inf-sup condition is lost). stat 1: no node left, or a dropped node inside the chain.
+   subroutine init_nodes(this, cfg, candidates, free, cand_nu, keep, warnings, stat, errmsg)
+      type(contact_t), intent(inout) :: this
+      type(contact_config_t), intent(in) :: cfg
+      integer, intent(in) :: candidates(:)
+      real(wp), intent(in) :: free(:, :), cand_nu(:, :)
+      logical, allocatable, intent(out) :: keep(:)
+      type(messages_t), intent(inout) :: warnings
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: i, k, nd, ntouch
+      character(len=:), allocatable :: ids
+
+      stat = 1
       ! drop nodes whose normal displacement is prescribed; detect contact with Gamma_u
       allocate (keep(size(candidates)))
       ntouch = 0
@@ -159,7 +202,7 @@ contains
          if (any(free(:, k) == 0 .and. abs(cand_nu(:, i)) > 1.0e-12_wp)) then
             keep(i) = .false.
             if (len(ids) > 0) ids = ids//', '
-            ids = ids//str(user_id(k))
+            ids = ids//str(user_id(cfg, k))
          end if
       end do
       nd = count(.not. keep)
@@ -186,12 +229,30 @@ contains
       ! the kept nodes must still form one chain of element edges
       do i = 1, size(candidates) - 1
          if (.not. keep(i) .and. any(keep(:i - 1)) .and. any(keep(i + 1:))) then
-            errmsg = 'contact: node '//str(user_id(candidates(i)))//' inside the candidate boundary has a prescribed '// &
+            errmsg = 'contact: node '//str(user_id(cfg, candidates(i)))// &
+                     ' inside the candidate boundary has a prescribed '// &
                      'normal displacement; split the boundary or free that node'
             return
          end if
       end do
+      stat = 0
+   end subroutine init_nodes
 
+   !> The chain's geometry (SPEC section 3): gaps g_i (a node more than tol inside the obstacle
+   !> is refused, round-off below it is set to 0), segment lengths h_i, weights w_i, abscissae
+   !> from O, masses m_i, which nodes slide; the step's state arrays allocated and zeroed.
+   !> stat 1: a single-node chain or a node that starts inside the obstacle.
+   subroutine init_geometry(this, cfg, x, free, mass, cand_gap, keep, tol, stat, errmsg)
+      type(contact_t), intent(inout) :: this
+      type(contact_config_t), intent(in) :: cfg
+      real(wp), intent(in) :: x(:, :), free(:, :), mass(:), cand_gap(:), tol
+      logical, intent(in) :: keep(:)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      real(wp) :: e(2)
+      integer :: i, k
+
+      stat = 1
       associate (nc => this%nc)
          this%gap = pack(cand_gap, keep)
          allocate (this%abscissa(nc), this%h(max(nc - 1, 0)), this%weight(nc), &
@@ -231,20 +292,26 @@ contains
             this%mass(i) = mass(k)
             this%slides(i) = all(free(:, k) == 1 .or. abs(this%tangent(:, i)) <= 1.0e-12_wp)
             if (this%gap(i) < -tol) then
-               errmsg = 'contact: node '//str(user_id(k))//' at ('//str(x(1, k))//', '//str(x(2, k))// &
+               errmsg = 'contact: node '//str(user_id(cfg, k))//' at ('//str(x(1, k))//', '//str(x(2, k))// &
                         ') starts inside the obstacle (gap '//str(this%gap(i))//' mm)'
                return
             end if
             this%gap(i) = max(this%gap(i), 0.0_wp)
          end do
       end associate
+      stat = 0
+   end subroutine init_geometry
 
-      allocate (this%rec(nrec, this%nc))
-      this%rec(rec_nx:rec_ny, :) = this%normal
-      this%rec(rec_tx:rec_ty, :) = this%tangent
-      this%rec(rec_gap, :) = this%gap
-      this%rec(rec_mass, :) = this%mass
-      this%rec(rec_cmass, :) = 0
+   !> The friction: thresholds s_i (uniform, or piecewise linear in the abscissa), Tresca limits
+   !> s_i w_i where the tangential dof is free, the friction law made by the factory
+   !> (docs/friction.md section 2) and its first limits, and the step's rec_free0 column.
+   !> stat /= 0: the factory refused the law.
+   subroutine init_friction(this, cfg, stat, errmsg)
+      type(contact_t), intent(inout) :: this
+      type(contact_config_t), intent(in) :: cfg
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: i
 
       ! friction threshold s_i: uniform, or piecewise linear in the abscissa (held beyond the ends)
       this%friction = cfg%friction == 'tresca'   ! Tresca's s_i below; the law is made after
@@ -278,25 +345,16 @@ contains
       if (this%friction) this%fn_touches = this%law%depends_on_fn()
       ! a zero limit means slip where there is no friction or the tangential dof is free
       this%rec(rec_free0, :) = merge(1.0_wp, 0.0_wp, this%slides .or. .not. this%friction)
-
-      this%penalty = cfg%method == 'penalty'
-      this%penalty_stiffness = cfg%penalty_stiffness
-      if (cfg%multiplier == 'P0') then
-         this%multiplier = multiplier_p0
-         call setup_p0(this)
-      else
-         this%multiplier = multiplier_p1
-      end if
       stat = 0
-      errmsg = ''
-   contains
-      !> node k as the user's mesh file numbers it
-      integer function user_id(k)
-         integer, intent(in) :: k
-         user_id = k
-         if (allocated(cfg%file_id)) user_id = cfg%file_id(k)
-      end function user_id
-   end subroutine contact_init
+   end subroutine init_friction
+
+   !> Node k as the user's mesh file numbers it (the messages name nodes so).
+   integer function user_id(cfg, k)
+      type(contact_config_t), intent(in) :: cfg
+      integer, intent(in) :: k
+      user_id = k
+      if (allocated(cfg%file_id)) user_id = cfg%file_id(k)
+   end function user_id
 
    pure real(wp) function interpolate(xs, ys, x) result(y)
       real(wp), intent(in) :: xs(:), ys(:), x

@@ -230,24 +230,50 @@ contains
    end subroutine read_untrapped
 
 
-   !> Nodes, quadrilaterals and physical curves of the current Gmsh model.
+   !> Nodes, quadrilaterals and physical curves of the current Gmsh model, in that order of
+   !> steps, then the nodes renumbered for the sweep.
    subroutine collect(path, mesh, stat, errmsg)
       character(len=*), intent(in) :: path
       type(mesh_t), intent(inout) :: mesh
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      type(c_ptr) :: p_types, p_tags, p_coord, p_pc, p_etags, p_enodes, p_dimtags, p_ents, p_name
-      integer(c_size_t) :: n_types, n_tags, n_coord, n_pc, n_etags, n_enodes, n_dimtags, n_ents
-      integer(c_int) :: ierr
-      integer(c_int), pointer :: types(:), dimtags(:), ents(:)
-      integer(c_size_t), pointer :: tags(:), etags(:), enodes(:)
-      real(c_double), pointer :: coord(:)
-      integer, allocatable :: local(:), conn(:, :), used(:), seg(:, :), gstart(:), elem_id(:), perm(:)
+      integer, allocatable :: local(:), conn(:, :), seg(:, :), gstart(:), elem_id(:), perm(:)
       real(wp), allocatable :: x(:, :)
       character(len=64), allocatable :: names(:)
-      integer(c_size_t) :: maxtag
-      integer :: i, g, ngroup, nseg, j, nel, nnode, bad
-      character(len=:), allocatable :: name
+      integer :: nseg
+
+      stat = 1
+      call collect_quads(path, conn, elem_id, stat, errmsg)
+      if (stat /= 0) return
+      call collect_nodes(path, conn, local, x, stat, errmsg)
+      if (stat /= 0) return
+      call collect_groups(path, local, names, gstart, seg, nseg, stat, errmsg)
+      if (stat /= 0) return
+      call mesh%init_arrays(x, conn)
+      mesh%elem_id = elem_id
+      call mesh%set_groups(names, gstart, seg(:, 1:nseg))
+      ! nodes in reverse Cuthill-McKee order for the sweep's locality, an element's nodes together
+      ! for its groups of rows (outputs keep the file's)
+      call rcm_order(mesh%conn, mesh%nnode, perm)
+      call group_order(mesh%conn, mesh%nnode, perm)
+      call mesh%renumber(perm)
+      stat = 0
+      errmsg = ''
+   end subroutine collect
+
+   !> The quadrilaterals: the model's 2D elements must all be 4-node quadrilaterals of four
+   !> distinct nodes; conn holds their Gmsh node tags, elem_id their Gmsh element tags.
+   subroutine collect_quads(path, conn, elem_id, stat, errmsg)
+      character(len=*), intent(in) :: path
+      integer, allocatable, intent(out) :: conn(:, :), elem_id(:)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      type(c_ptr) :: p_types, p_etags, p_enodes
+      integer(c_size_t) :: n_types, n_etags, n_enodes
+      integer(c_int) :: ierr
+      integer(c_int), pointer :: types(:)
+      integer(c_size_t), pointer :: etags(:), enodes(:)
+      integer :: i, j, nel
 
       stat = 1
       ! 2D element types: quadrilaterals only
@@ -299,7 +325,30 @@ contains
             end if
          end do
       end do
+      stat = 0
+   end subroutine collect_quads
 
+   !> The nodes: only those of the quadrilaterals are kept (a circle's centre point carries no
+   !> mass), numbered 1..n in increasing Gmsh tag (local maps a tag to that number, 0 when not
+   !> kept); x gets their finite coordinates and conn is rewritten in the new numbers.
+   subroutine collect_nodes(path, conn, local, x, stat, errmsg)
+      character(len=*), intent(in) :: path
+      integer, intent(inout) :: conn(:, :)
+      integer, allocatable, intent(out) :: local(:)
+      real(wp), allocatable, intent(out) :: x(:, :)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      type(c_ptr) :: p_tags, p_coord, p_pc
+      integer(c_size_t) :: n_tags, n_coord, n_pc
+      integer(c_int) :: ierr
+      integer(c_size_t), pointer :: tags(:)
+      real(c_double), pointer :: coord(:)
+      integer, allocatable :: used(:)
+      integer(c_size_t) :: maxtag
+      integer :: i, j, nel, nnode, bad
+
+      stat = 1
+      nel = size(conn, 2)
       ! all nodes; keep those of the quadrilaterals, numbered in increasing tag
       call gmshModelMeshGetNodes(p_tags, n_tags, p_coord, n_coord, p_pc, n_pc, -1_c_int, -1_c_int, &
                                  0_c_int, 0_c_int, ierr)
@@ -360,7 +409,29 @@ contains
          return
       end if
       conn = reshape(local(pack(conn, .true.)), [4, nel])
+      stat = 0
+   end subroutine collect_nodes
 
+   !> The physical groups: each physical curve becomes a named boundary group of 2-node edges
+   !> (its name, or its tag when it has none), in local node numbers; group g is
+   !> seg(:, gstart(g):gstart(g+1)-1).
+   subroutine collect_groups(path, local, names, gstart, seg, nseg, stat, errmsg)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: local(:)
+      character(len=64), allocatable, intent(out) :: names(:)
+      integer, allocatable, intent(out) :: gstart(:), seg(:, :)
+      integer, intent(out) :: nseg
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      type(c_ptr) :: p_dimtags, p_ents, p_name
+      integer(c_size_t) :: n_dimtags, n_ents
+      integer(c_int) :: ierr
+      integer(c_int), pointer :: dimtags(:), ents(:)
+      integer :: i, g, ngroup
+      character(len=:), allocatable :: name
+
+      stat = 1
+      nseg = 0
       ! physical curves -> named groups of 2-node edges
       call gmshModelGetPhysicalGroups(p_dimtags, n_dimtags, 1_c_int, ierr)
       if (ierr /= 0) then
@@ -402,17 +473,8 @@ contains
          return
       end if
       gstart(ngroup + 1) = nseg + 1
-      call mesh%init_arrays(x, conn)
-      mesh%elem_id = elem_id
-      call mesh%set_groups(names, gstart, seg(:, 1:nseg))
-      ! nodes in reverse Cuthill-McKee order for the sweep's locality, an element's nodes together
-      ! for its groups of rows (outputs keep the file's)
-      call rcm_order(mesh%conn, mesh%nnode, perm)
-      call group_order(mesh%conn, mesh%nnode, perm)
-      call mesh%renumber(perm)
       stat = 0
-      errmsg = ''
-   end subroutine collect
+   end subroutine collect_groups
 
    !> Append the 2-node line elements of curve `tag` to seg.
    subroutine curve_edges(tag, seg, nseg, local, stat, errmsg)

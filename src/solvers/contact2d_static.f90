@@ -150,12 +150,9 @@ contains
       type(model_t), intent(in) :: model
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      integer :: k, c, i, n, nint, nnz, e, a, b, ia, ib, ncd
-      integer, allocatable :: ti(:), tj(:)
-      real(wp), allocatable :: tx(:), l22(:, :), xy(:, :)
-      integer, allocatable :: order(:), group(:)
+      real(wp), allocatable :: l22(:, :)
+      integer, allocatable :: order(:)
       integer(i8) :: t0, t1, rate
-      logical, allocatable :: is_contact(:)
 
       call system_clock(t0, rate)
       stat = 1
@@ -165,6 +162,54 @@ contains
                   "is not supported with solver:method = 'static'"
          return
       end if
+      call setup_numbering(this, model, stat, errmsg)
+      if (stat /= 0) return
+      call setup_factor(this, model, stat, errmsg)
+      if (stat /= 0) return
+      call system_clock(t1)
+      this%time_factor = real(t1 - t0, wp)/rate
+      t0 = t1
+
+      ! A = P^T B S B^T P from S = L22 L22^T
+      if (this%m > 0) then
+         allocate (l22(this%ncdof, this%ncdof))
+         allocate (order(this%ncdof))
+         call this%chol%trailing(l22, order)
+         call condense(this, model, l22, order, stat, errmsg)
+         if (stat /= 0) return
+      end if
+      allocate (this%u(2, this%nnode), this%fext(2, this%nnode), this%fint(2, this%nnode), &
+                this%fc(2, this%nnode), this%lambda(this%m), this%state(this%m), &
+                this%fn(this%nc), this%ft(this%nc), this%mu(this%nc))
+      this%u = 0
+      this%fext = 0
+      this%fint = 0
+      this%fc = 0
+      this%lambda = 0
+      this%state = -99       ! no state yet: the first increment starts from lambda = 0
+      this%fn = 0
+      this%ft = 0
+      this%mu = 0
+      call system_clock(t1)
+      this%time_condense = real(t1 - t0, wp)/rate
+      stat = 0
+   end subroutine static_setup
+
+   !> The numbering: free dofs of the interior first, then those of the contact nodes along
+   !> Gamma_c (so that CHOLMOD eliminates them last and L22 gives their Schur complement), and
+   !> the contact unknowns (the normal of every contact node, then the tangent where both of its
+   !> dofs are free) with their directions and Tresca limits. stat 1: a contact node with a
+   !> prescribed dof that is neither its normal nor its tangent.
+   subroutine setup_numbering(this, model, stat, errmsg)
+      class(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: k, c, i, n, nint, ncd
+      logical, allocatable :: is_contact(:)
+
+      stat = 1
+      errmsg = ''
       this%nnode = model%mesh%nnode
       associate (free => model%load%free, ct => model%contact)
          allocate (this%dof(2, this%nnode), is_contact(this%nnode))
@@ -229,7 +274,24 @@ contains
             return
          end if
       end associate
+      stat = 0
+   end subroutine setup_numbering
 
+   !> The factorisation: K_ff assembled from the element matrices (lower triangle, as triplets)
+   !> and factorised by CHOLMOD with the contact dofs last, each dof grouped with its node and
+   !> placed at its coordinates for the ordering. stat 1: nothing to solve or a singular K_ff
+   !> (a free rigid-body mode).
+   subroutine setup_factor(this, model, stat, errmsg)
+      class(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: k, c, n, nnz, e, a, b, ia, ib
+      integer, allocatable :: ti(:), tj(:), group(:)
+      real(wp), allocatable :: tx(:), xy(:, :)
+
+      stat = 1
+      errmsg = ''
       ! K_ff from the element matrices, lower triangle (row >= column)
       nnz = 0
       do e = 1, model%mesh%nel
@@ -284,35 +346,7 @@ contains
                   '): the static engine needs Dirichlet data that hold the body without contact'
          return
       end if
-      if (stat /= 0) return
-      call system_clock(t1)
-      this%time_factor = real(t1 - t0, wp)/rate
-      t0 = t1
-
-      ! A = P^T B S B^T P from S = L22 L22^T
-      if (this%m > 0) then
-         allocate (l22(this%ncdof, this%ncdof))
-         allocate (order(this%ncdof))
-         call this%chol%trailing(l22, order)
-         call condense(this, model, l22, order, stat, errmsg)
-         if (stat /= 0) return
-      end if
-      allocate (this%u(2, this%nnode), this%fext(2, this%nnode), this%fint(2, this%nnode), &
-                this%fc(2, this%nnode), this%lambda(this%m), this%state(this%m), &
-                this%fn(this%nc), this%ft(this%nc), this%mu(this%nc))
-      this%u = 0
-      this%fext = 0
-      this%fint = 0
-      this%fc = 0
-      this%lambda = 0
-      this%state = -99       ! no state yet: the first increment starts from lambda = 0
-      this%fn = 0
-      this%ft = 0
-      this%mu = 0
-      call system_clock(t1)
-      this%time_condense = real(t1 - t0, wp)/rate
-      stat = 0
-   end subroutine static_setup
+   end subroutine setup_factor
 
    !> S = L22 L22^T (LAPACK dlauum on the index-reversed factor), then A = P^T B S B^T P:
    !> B rotates each contact node's free dofs to (n, t), P = diag(D^-1, I) for P0 (I for P1).
@@ -399,13 +433,8 @@ contains
       character(len=:), allocatable, intent(out) :: message
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      real(wp), allocatable :: up(:, :), ku(:, :), f(:), x(:), y0(:), cvec(:), qn(:), psi_ref(:), lim(:), &
-                               uprev(:, :), lim_new(:), hist(:, :), ysol(:), fn_last(:), mu_last(:)
-      real(wp) :: cv(model%load%ncurve), scale
-      integer, allocatable :: state_prev(:), state_first(:)
-      integer :: p, n, c, i, r, iouter, nit, k, itry
+      real(wp), allocatable :: up(:, :), f(:), x(:), cvec(:), uprev(:, :), fn_last(:), mu_last(:)
       integer(i8) :: t0, t1, rate
-      logical :: done, pdas_ok, ok_exact
 
       call system_clock(t0, rate)
       stat = 0
@@ -413,6 +442,49 @@ contains
       message = ''
       converged = .true.
       uprev = this%u
+      call increment_loads(this, model, t, up, f, x, stat, errmsg)
+      if (stat /= 0) return
+
+      fn_last = this%fn
+      mu_last = this%mu
+      this%fn = 0
+      this%ft = 0
+      this%mu = 0
+      this%fc = 0
+      if (this%m > 0) then
+         call increment_condensed_rhs(this, model, x, uprev, cvec)
+         call increment_sets(this, model, cvec, fn_last, mu_last, converged, message, stat, errmsg)
+         if (stat /= 0) return
+      end if
+      ! one solve: u = K^-1 (f + F_c). The condensed operator and this solve come from the same
+      ! factor, so the KKT residuals of u are at round-off level without refinement (docs/static.md
+      ! step 5: iterative refinement of u and of the multipliers changed u by at most 2.4e-11
+      ! relative at level 6 and did not lower the residuals)
+      call displacement(this, model, f, up, stat)
+      if (stat /= 0) then
+         errmsg = 'CHOLMOD solve failed'
+         return
+      end if
+      call kkt_residuals(this, model, uprev)
+      call system_clock(t1)
+      this%time_pdas = this%time_pdas + real(t1 - t0, wp)/rate
+   end subroutine static_increment
+
+   !> The loads of time t: up the prescribed values, this%fext the tractions, f = f_ext - K u_p
+   !> on the free dofs, and x = K_ff^-1 f, the body's response without contact (docs/static.md
+   !> step 2's y0 comes from it). stat /= 0: the CHOLMOD solve failed.
+   subroutine increment_loads(this, model, t, up, f, x, stat, errmsg)
+      class(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: t
+      real(wp), allocatable, intent(out) :: up(:, :), f(:), x(:)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      real(wp), allocatable :: ku(:, :)
+      real(wp) :: cv(model%load%ncurve)
+      integer :: p, n, c
+
+      errmsg = ''
       ! loads and prescribed values at t; f = tractions - K u_p on the free dofs
       call model%load%curve_values(t, cv)
       allocate (up(2, this%nnode), ku(2, this%nnode))
@@ -438,139 +510,151 @@ contains
          errmsg = 'CHOLMOD solve failed'
          return
       end if
+   end subroutine increment_loads
 
-      fn_last = this%fn
-      mu_last = this%mu
-      this%fn = 0
-      this%ft = 0
-      this%mu = 0
-      this%fc = 0
-      if (this%m > 0) then
-         allocate (ysol(this%m))
-         ! y0 = (T (q0_n - g), q0_t - psi_ref)
-         allocate (y0(this%m), qn(this%nc), psi_ref(this%nt))
-         do r = 1, this%m
-            n = model%contact%node(this%cnode(r))
-            y0(r) = 0
-            do c = 1, 2
-               if (this%dof(c, n) > 0) y0(r) = y0(r) + this%bdir(c, r)*x(this%dof(c, n))
-            end do
+   !> The condensed right-hand side cvec = A y0, y0 = (T (q0_n - g), q0_t - psi_ref) the contact
+   !> unknowns of the response x without contact (T = D for P0, I for P1, SPEC §3; psi_ref the
+   !> tangential displacement of the last increment uprev, from which friction acts).
+   subroutine increment_condensed_rhs(this, model, x, uprev, cvec)
+      class(static_t), intent(in) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: x(:), uprev(:, :)
+      real(wp), allocatable, intent(out) :: cvec(:)
+      real(wp), allocatable :: y0(:), qn(:), psi_ref(:)
+      integer :: r, n, c
+
+      ! y0 = (T (q0_n - g), q0_t - psi_ref)
+      allocate (y0(this%m), qn(this%nc), psi_ref(this%nt))
+      do r = 1, this%m
+         n = model%contact%node(this%cnode(r))
+         y0(r) = 0
+         do c = 1, 2
+            if (this%dof(c, n) > 0) y0(r) = y0(r) + this%bdir(c, r)*x(this%dof(c, n))
          end do
-         do r = this%nc + 1, this%m
-            psi_ref(r - this%nc) = dot_product(this%bdir(:, r), uprev(:, model%contact%node(this%cnode(r))))
+      end do
+      do r = this%nc + 1, this%m
+         psi_ref(r - this%nc) = dot_product(this%bdir(:, r), uprev(:, model%contact%node(this%cnode(r))))
+      end do
+      qn = y0(1:this%nc) - model%contact%gap
+      if (this%p0) then
+         call d_apply(model, qn, y0(1:this%nc))
+      else
+         y0(1:this%nc) = qn
+      end if
+      y0(this%nc + 1:) = y0(this%nc + 1:) - psi_ref
+      allocate (cvec(this%m))
+      cvec = matmul(this%a, y0)
+   end subroutine increment_condensed_rhs
+
+   !> The active-set loop: the PDAS solve of the condensed problem (tangential constants tried
+   !> in turn, then for Coulomb the semismooth Newton iteration), inside the fixed point on the
+   !> friction limits when they depend on the contact forces. Sets lambda, the state and the nodal
+   !> forces; converged = .false. with a message when a loop cycles or does not settle.
+   subroutine increment_sets(this, model, cvec, fn_last, mu_last, converged, message, stat, errmsg)
+      class(static_t), intent(inout) :: this
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: cvec(:), fn_last(:), mu_last(:)
+      logical, intent(inout) :: converged
+      character(len=:), allocatable, intent(inout) :: message
+      integer, intent(inout) :: stat
+      character(len=:), allocatable, intent(inout) :: errmsg
+      real(wp), allocatable :: lim(:), lim_new(:), hist(:, :), ysol(:)
+      real(wp) :: scale
+      integer, allocatable :: state_prev(:), state_first(:)
+      integer :: i, iouter, nit, k, itry
+      logical :: done, pdas_ok, ok_exact
+
+      allocate (ysol(this%m))
+      ! thresholds: Tresca's s_i w_i; with Coulomb (mu F_n,i) or tresca_scope = 'contact' (none
+      ! where the node is out of contact) they depend on the contact forces: a fixed point on
+      ! them (docs/static.md "Coulomb friction and tresca_scope = 'contact'")
+      allocate (lim(this%nt), lim_new(this%nt), hist(this%nt, max_outer), state_prev(this%m))
+      if (this%linear) then
+         ! warm start: the limits of the last increment's forces (none at the first)
+         call law_limits(this, model, fn_last, mu_last, lim)
+      else
+         lim = this%limit
+      end if
+      state_prev = -99
+      done = .false.
+      do iouter = 1, max_outer
+         this%outer_iterations = this%outer_iterations + 1
+         ! a cycle restarts the iteration from 'all in contact, all stuck' with a smaller
+         ! tangential constant (docs/static.md)
+         do itry = 1, size(ct_tries)
+            if (itry > 1) this%state = -99
+            call pdas_solve(this%a, this%nc, cvec, lim, ct_tries(itry), this%max_iter, this%state, this%lambda, &
+                            ysol, nit, pdas_ok, stat, errmsg)
+            this%iterations = this%iterations + nit
+            if (stat /= 0) return
+            if (pdas_ok) exit
+            if (itry == 1) state_first = this%state
          end do
-         qn = y0(1:this%nc) - model%contact%gap
-         if (this%p0) then
-            call d_apply(model, qn, y0(1:this%nc))
-         else
-            y0(1:this%nc) = qn
-         end if
-         y0(this%nc + 1:) = y0(this%nc + 1:) - psi_ref
-         allocate (cvec(this%m))
-         cvec = matmul(this%a, y0)
-         ! thresholds: Tresca's s_i w_i; with Coulomb (mu F_n,i) or tresca_scope = 'contact' (none
-         ! where the node is out of contact) they depend on the contact forces: a fixed point on
-         ! them (docs/static.md "Coulomb friction and tresca_scope = 'contact'")
-         allocate (lim(this%nt), lim_new(this%nt), hist(this%nt, max_outer), state_prev(this%m))
-         if (this%linear) then
-            ! warm start: the limits of the last increment's forces (none at the first)
-            call law_limits(this, model, fn_last, mu_last, lim)
-         else
-            lim = this%limit
-         end if
-         state_prev = -99
-         done = .false.
-         do iouter = 1, max_outer
-            this%outer_iterations = this%outer_iterations + 1
-            ! a cycle restarts the iteration from 'all in contact, all stuck' with a smaller
-            ! tangential constant (docs/static.md)
-            do itry = 1, size(ct_tries)
-               if (itry > 1) this%state = -99
-               call pdas_solve(this%a, this%nc, cvec, lim, ct_tries(itry), this%max_iter, this%state, this%lambda, &
-                               ysol, nit, pdas_ok, stat, errmsg)
-               this%iterations = this%iterations + nit
-               if (stat /= 0) return
-               if (pdas_ok) exit
-               if (itry == 1) state_first = this%state
-            end do
-            if (.not. pdas_ok .and. this%linear) then
-               ! Coulomb: the Tresca subproblem's active-set iteration cycles; a semismooth Newton
-               ! iteration on the Coulomb problem itself, from the first try's sets
-               this%state = state_first
-               call linear_newton(this, model, cvec, nit, pdas_ok, stat, errmsg)
-               this%iterations = this%iterations + nit
-               if (stat /= 0) return
-               if (pdas_ok) then
-                  done = .true.
-                  exit
-               end if
-            end if
-            if (.not. pdas_ok) then
-               converged = .false.
-               message = 'the active-set iteration cycled or did not settle in '//str(this%max_iter)// &
-                         ' iterations (solver:static_iterations)'
-               exit
-            end if
-            call nodal_forces(this, model)
-            if (.not. this%law_fp) then
+         if (.not. pdas_ok .and. this%linear) then
+            ! Coulomb: the Tresca subproblem's active-set iteration cycles; a semismooth Newton
+            ! iteration on the Coulomb problem itself, from the first try's sets
+            this%state = state_first
+            call linear_newton(this, model, cvec, nit, pdas_ok, stat, errmsg)
+            this%iterations = this%iterations + nit
+            if (stat /= 0) return
+            if (pdas_ok) then
                done = .true.
                exit
             end if
-            hist(:, iouter) = lim
-            call law_limits(this, model, this%fn, this%mu, lim_new)
-            if (debug) then
-               do k = 1, this%nt
-                  if (lim_new(k) /= lim(k)) print '(a,i4,i5,4es12.4)', 'fp', iouter, k, lim(k), lim_new(k), &
-                     this%mu(this%cnode(this%nc + k)), this%fn(this%cnode(this%nc + k))
-               end do
-            end if
-            scale = max(absmax(lim_new), absmax(lim), tiny(1.0_wp))
-            ! Coulomb: once the sets repeat (or the limits have settled), the fixed point of the
-            ! limits with these sets is one linear solve; it is the answer if the sets hold
-            if (this%linear .and. (all(this%state == state_prev) .or. &
-                                    absmax(lim_new - lim) <= fp_tol*scale)) then
-               call linear_exact(this, model, cvec, ok_exact, stat, errmsg)
-               if (stat /= 0) return
-               if (ok_exact) then
-                  done = .true.
-                  exit
-               end if
-            end if
-            if (absmax(lim_new - lim) <= fp_tol*scale) then
-               done = .true.
-               exit
-            end if
-            do i = 1, iouter - 1
-               if (absmax(lim_new - hist(:, i)) <= fp_tol*scale) exit
-            end do
-            if (i <= iouter - 1) then
-               converged = .false.
-               message = 'the fixed point on the friction limits ('//trim(model%contact%law%name())// &
-                         ') cycles (period '//str(iouter + 1 - i)//')'
-               exit
-            end if
-            state_prev = this%state
-            lim = lim_new
-         end do
-         if (.not. done .and. converged) then
+         end if
+         if (.not. pdas_ok) then
             converged = .false.
-            message = 'the fixed point on the friction limits did not settle in '//str(max_outer)//' passes'
+            message = 'the active-set iteration cycled or did not settle in '//str(this%max_iter)// &
+                      ' iterations (solver:static_iterations)'
+            exit
          end if
-         if (.not. pdas_ok) call nodal_forces(this, model)
+         call nodal_forces(this, model)
+         if (.not. this%law_fp) then
+            done = .true.
+            exit
+         end if
+         hist(:, iouter) = lim
+         call law_limits(this, model, this%fn, this%mu, lim_new)
+         if (debug) then
+            do k = 1, this%nt
+               if (lim_new(k) /= lim(k)) print '(a,i4,i5,4es12.4)', 'fp', iouter, k, lim(k), lim_new(k), &
+                  this%mu(this%cnode(this%nc + k)), this%fn(this%cnode(this%nc + k))
+            end do
+         end if
+         scale = max(absmax(lim_new), absmax(lim), tiny(1.0_wp))
+         ! Coulomb: once the sets repeat (or the limits have settled), the fixed point of the
+         ! limits with these sets is one linear solve; it is the answer if the sets hold
+         if (this%linear .and. (all(this%state == state_prev) .or. &
+                                 absmax(lim_new - lim) <= fp_tol*scale)) then
+            call linear_exact(this, model, cvec, ok_exact, stat, errmsg)
+            if (stat /= 0) return
+            if (ok_exact) then
+               done = .true.
+               exit
+            end if
+         end if
+         if (absmax(lim_new - lim) <= fp_tol*scale) then
+            done = .true.
+            exit
+         end if
+         do i = 1, iouter - 1
+            if (absmax(lim_new - hist(:, i)) <= fp_tol*scale) exit
+         end do
+         if (i <= iouter - 1) then
+            converged = .false.
+            message = 'the fixed point on the friction limits ('//trim(model%contact%law%name())// &
+                      ') cycles (period '//str(iouter + 1 - i)//')'
+            exit
+         end if
+         state_prev = this%state
+         lim = lim_new
+      end do
+      if (.not. done .and. converged) then
+         converged = .false.
+         message = 'the fixed point on the friction limits did not settle in '//str(max_outer)//' passes'
       end if
-      ! one solve: u = K^-1 (f + F_c). The condensed operator and this solve come from the same
-      ! factor, so the KKT residuals of u are at round-off level without refinement (docs/static.md
-      ! step 5: iterative refinement of u and of the multipliers changed u by at most 2.4e-11
-      ! relative at level 6 and did not lower the residuals)
-      call displacement(this, model, f, up, stat)
-      if (stat /= 0) then
-         errmsg = 'CHOLMOD solve failed'
-         return
-      end if
-      call kkt_residuals(this, model, uprev)
-      call system_clock(t1)
-      this%time_pdas = this%time_pdas + real(t1 - t0, wp)/rate
-   end subroutine static_increment
+      if (.not. pdas_ok) call nodal_forces(this, model)
+   end subroutine increment_sets
 
    !> u = K^-1 (f0 + contact forces) on the free dofs, up on the prescribed ones; fc and fint
    !> (element by element) follow.
