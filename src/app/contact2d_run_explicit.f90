@@ -16,7 +16,7 @@ module contact2d_run_explicit
    use contact2d_sys, only: sys_signals_install, sys_signal_pending, sys_strerror
    use contact2d_threads, only: thread_tuner_t
    use contact2d_stiffness, only: omp_min_nodes
-   use contact2d_static_run, only: static_distance
+   use contact2d_run_static, only: static_distance
    use contact2d_validity, only: validity_t
    use contact2d_report, only: report_time_step, ramp_warning, progress_line, report_summary, report_threads
    use contact2d_run_exit, only: opath, keep_partial, fail, fail_now, fail_write, check_output, kept_note, &
