@@ -11,9 +11,8 @@ module contact2d_run_static
    use contact2d_deck, only: deck_t
    use contact2d_model, only: model_t
    use contact2d_state, only: state_t
-   use contact2d_output, only: output_t
+   use contact2d_output, only: output_t, static_figures_t
    use contact2d_static, only: static_t, static_saved_t
-   use contact2d_kkt, only: kkt_names
    use contact2d_sys, only: sys_signals_install, sys_signal_pending, sys_strerror
    use contact2d_validity, only: validity_t
    use contact2d_report, only: report_static_summary
@@ -151,7 +150,7 @@ contains
          call run%engine%free()
          call fail_now(2, errmsg, .false.)   ! the file could not be created: no file kept
       end if
-      call attributes_open(out, deck, model)
+      call out%attributes_static(deck, model)
       call out%sample(run%state, 0.0_wp)
    end subroutine output_start
 
@@ -273,7 +272,7 @@ contains
       call system_clock(clock1, rate)
       run%wall = real(clock1 - clock0, wp)/rate
       timings = [run%engine%time_factor + run%engine%time_condense, run%engine%time_pdas, 0.0_wp, 0.0_wp]
-      call attributes_end(out, run%engine, run%kkt_max, run%increments, int(run%state%step), run%splits)
+      call out%attributes_static_end(figures(run))
       run%ended = run%status /= 'interrupted' .and. run%status /= 'static solver failure'
       ! the small-strain, small-displacement range of the end state (docs/output.md)
       if (run%ended) then
@@ -288,6 +287,22 @@ contains
          call fail_write(errmsg//'; what was written so far is in '//opath%partial)
       end if
    end subroutine output_end
+
+   !> What the engine and the increments leave for the closing root attributes.
+   type(static_figures_t) function figures(run) result(fig)
+      type(static_state_t), intent(in) :: run
+      fig%kkt_max = run%kkt_max
+      fig%increments = run%increments
+      fig%steps = int(run%state%step)
+      fig%splits = run%splits
+      fig%iterations = run%engine%iterations
+      fig%outer_iterations = run%engine%outer_iterations
+      fig%factor_nonzeros = run%engine%chol%lnz
+      fig%factor_flops = run%engine%chol%flops
+      fig%time_factor = run%engine%time_factor
+      fig%time_condense = run%engine%time_condense
+      fig%time_solve = run%engine%time_pdas
+   end function figures
 
    !> The file moved into place (a run that did not reach its end does not replace an existing
    !> result: it stays at its temporary name, docs/output.md); then the exit of a run that was
@@ -313,46 +328,6 @@ contains
       end if
       call opath%abandon(keep_partial)
    end subroutine run_end
-
-   !> The root attributes an explicit file has, with their static values (docs/output.md).
-   subroutine attributes_open(out, deck, model)
-      type(output_t), intent(inout) :: out
-      type(deck_t), intent(in) :: deck
-      type(model_t), intent(in) :: model
-      call out%file%attr(out%file%id, 'method', 'static')
-      call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
-      call out%file%attr(out%file%id, 'dt_limit', trim(deck%solver%dt_limit))
-      call out%file%attr(out%file%id, 'dt_initial', 0.0_wp)
-      call out%file%attr(out%file%id, 'dt_fallback_step', -1)
-      call out%file%attr(out%file%id, 'added_mass', model%added_mass)
-      call out%file%attr(out%file%id, 'body_mass', model%body_mass)
-      call out%file%attr(out%file%id, 'dynamic', 0)
-      call out%file%attr(out%file%id, 'convergence_test', 1)
-      call out%file%attr(out%file%id, 'initial_kinetic_energy', 0.0_wp)
-   end subroutine attributes_open
-
-   !> The static engine's closing attributes: the largest KKT residuals, the increments, steps
-   !> and halvings, the iterations, the factor's size and the engine's times (docs/output.md).
-   subroutine attributes_end(out, st, kkt_max, nk, steps, splits)
-      type(output_t), intent(inout) :: out
-      type(static_t), intent(in) :: st
-      real(wp), intent(in) :: kkt_max(4)
-      integer, intent(in) :: nk, steps, splits
-      integer :: i
-      do i = 1, 4
-         call out%file%attr(out%file%id, 'kkt_'//trim(kkt_names(i)), kkt_max(i))
-      end do
-      call out%file%attr(out%file%id, 'static_increments', nk)
-      call out%file%attr(out%file%id, 'static_steps', steps)
-      call out%file%attr(out%file%id, 'static_splits', splits)
-      call out%file%attr(out%file%id, 'static_iterations', st%iterations)
-      call out%file%attr(out%file%id, 'static_outer_iterations', st%outer_iterations)
-      call out%file%attr(out%file%id, 'factor_nonzeros', st%chol%lnz)
-      call out%file%attr(out%file%id, 'factor_flops', st%chol%flops)
-      call out%file%attr(out%file%id, 'time_factor_seconds', st%time_factor)
-      call out%file%attr(out%file%id, 'time_condense_seconds', st%time_condense)
-      call out%file%attr(out%file%id, 'time_solve_seconds', st%time_pdas)
-   end subroutine attributes_end
 
    !> The increments 1 .. solver:static_increments to the end of the load, each by advance: the
    !> one loop of the static run (accept after each settled step; stop_unsettled: the first
