@@ -20,7 +20,7 @@ module contact2d_run_explicit
    use contact2d_validity, only: validity_t
    use contact2d_report, only: report_time_step, ramp_warning, progress_line, report_summary, report_threads
    use contact2d_run_exit, only: opath, keep_partial, fail, fail_now, fail_write, check_output, kept_note, &
-                                 stop_interrupted
+                                 stop_interrupted, run_ended
    implicit none
    private
    public :: run_explicit
@@ -302,7 +302,7 @@ contains
       ! output:snapshot_times after the end of the run: said in the file and the summary
       march%snap_missed = deck%output%snapshot_times(march%isnap:deck%output%nsnapshot)
       call out%attributes_explicit_end(march%snap_missed, march%dt_initial, int(march%fallback_step))
-      ended = .not. any(state%status == [character(len=24) :: 'interrupted', 'blow-up', 'contact solver failure'])
+      ended = run_ended(state%status)
       ! the small-strain, small-displacement range: measured on the end state, said after the summary
       if (ended) then
          call validity%measure(model%mesh, state%u)

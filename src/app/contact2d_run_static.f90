@@ -16,7 +16,7 @@ module contact2d_run_static
    use contact2d_sys, only: sys_signals_install, sys_signal_pending, sys_strerror
    use contact2d_validity, only: validity_t
    use contact2d_report, only: report_static_summary
-   use contact2d_run_exit, only: opath, keep_partial, fail, fail_now, fail_write, kept_note, stop_interrupted
+   use contact2d_run_exit, only: opath, keep_partial, fail, fail_now, fail_write, kept_note, stop_interrupted, run_ended
    implicit none
    private
    public :: run_static, static_distance
@@ -111,7 +111,7 @@ contains
       end if
       if (sys_signal_pending() /= 0) then
          call run%engine%free()
-         call refuse('interrupted')
+         call refuse('')   ! the signal is said, not a message
       end if
       associate (st => run%engine)
          run%increments = deck%solver%static_increments
@@ -273,7 +273,7 @@ contains
       run%wall = real(clock1 - clock0, wp)/rate
       timings = [run%engine%time_factor + run%engine%time_condense, run%engine%time_pdas, 0.0_wp, 0.0_wp]
       call out%attributes_static_end(figures(run))
-      run%ended = run%status /= 'interrupted' .and. run%status /= 'static solver failure'
+      run%ended = run_ended(run%status)
       ! the small-strain, small-displacement range of the end state (docs/output.md)
       if (run%ended) then
          call run%validity%measure(model%mesh, run%state%u)
