@@ -334,7 +334,7 @@ contains
    !> increment that does not settle ends them) and of static_distance (no accept; every
    !> increment is solved). A signal ends them before the next increment.
    subroutine increments(engine, deck, model, stop_unsettled, res, accept)
-      type(static_t), intent(inout) :: engine
+      type(static_t), intent(inout), target :: engine   !< (accept may read it through the run)
       type(deck_t), intent(in) :: deck
       type(model_t), intent(in) :: model
       logical, intent(in) :: stop_unsettled
@@ -363,7 +363,7 @@ contains
    !> iterate accepted too and ends the increment: res%settled = .false. with res%message and
    !> res%k the first time. res%stat /= 0 with res%errmsg and res%k when the engine fails.
    subroutine advance(st, deck, model, k, res, accept)
-      type(static_t), intent(inout) :: st
+      type(static_t), intent(inout), target :: st   !< (accept may read it through the run)
       type(deck_t), intent(in) :: deck
       type(model_t), intent(in) :: model
       integer, intent(in) :: k
