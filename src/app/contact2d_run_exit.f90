@@ -10,7 +10,7 @@ module contact2d_run_exit
    use contact2d_sys, only: sys_exit_now
    implicit none
    private
-   public :: opath, keep_partial, fail, fail_now, fail_write, check_output, kept_note, stop_interrupted
+   public :: opath, keep_partial, fail, fail_now, fail_write, check_output, kept_note, stop_interrupted, run_ended
 
    !> This run's output names and lock: fail() releases them (docs/output.md, output safety).
    type(outpath_t), save :: opath
@@ -58,6 +58,15 @@ contains
       if (.not. out%file%ok()) call fail_write(out%file%errmsg//'; the run stopped; what was written before is in '// &
                                                opath%partial)
    end subroutine check_output
+
+   !> Whether a run with this end status reached its end: not stopped by a signal, a blow-up or a
+   !> failure of the contact solver (explicit) or of the static engine. A run that did not reach
+   !> its end has no validity range and does not replace an existing result (docs/output.md).
+   logical function run_ended(status)
+      character(len=*), intent(in) :: status
+      run_ended = .not. any(status == [character(len=24) :: 'interrupted', 'blow-up', 'contact solver failure', &
+                                       'static solver failure'])
+   end function run_ended
 
    !> '' when the run's file went to the output, else (a run that did not reach its end would
    !> have replaced an existing result: outpath destination) a note that the result was kept.

@@ -16,11 +16,11 @@ module contact2d_run_explicit
    use contact2d_sys, only: sys_signals_install, sys_signal_pending, sys_strerror
    use contact2d_threads, only: thread_tuner_t
    use contact2d_stiffness, only: omp_min_nodes
-   use contact2d_static_run, only: static_distance
+   use contact2d_run_static, only: static_distance
    use contact2d_validity, only: validity_t
    use contact2d_report, only: report_time_step, ramp_warning, progress_line, report_summary, report_threads
    use contact2d_run_exit, only: opath, keep_partial, fail, fail_now, fail_write, check_output, kept_note, &
-                                 stop_interrupted
+                                 stop_interrupted, run_ended
    implicit none
    private
    public :: run_explicit
@@ -119,19 +119,7 @@ contains
                     target=opath%target)
       if (stat /= 0) call fail_now(2, errmsg, .false.)   ! nothing readable yet: no file kept
       keep_partial = .true.
-      call out%file%attr(out%file%id, 'method', 'explicit')
-      call out%file%attr(out%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
-      call out%file%attr(out%file%id, 'dt_limit', trim(deck%solver%dt_limit))
-      call out%file%attr(out%file%id, 'added_mass', model%added_mass)
-      call out%file%attr(out%file%id, 'body_mass', model%body_mass)
-      if (model%omega2_power > 0) then
-         call out%file%attr(out%file%id, 'omega_max_power', sqrt(model%omega2_power))
-         call out%file%attr(out%file%id, 'dt_stable_estimate', 2/sqrt(model%omega2_power))
-      end if
-      ! the kind of run and the energy put in at t = 0 (docs/output.md)
-      call out%file%attr(out%file%id, 'dynamic', merge(1, 0, deck%dynamic))
-      call out%file%attr(out%file%id, 'convergence_test', merge(1, 0, deck%convergence_test))
-      call out%file%attr(out%file%id, 'initial_kinetic_energy', solver%initial_kinetic)
+      call out%attributes_explicit(deck, model, solver%initial_kinetic)
       call out%sample(state, 0.0_wp)
       call check_output(out)
    end subroutine output_start
@@ -287,8 +275,7 @@ contains
          ! interrupted: said once, at the end
          if (sys_signal_pending() == 0) write (error_unit, '(a)') program_name//': warning: compare_static: '//errmsg
       else
-         call out%file%attr(out%file%id, 'static_distance_energy', dist)
-         call out%file%attr(out%file%id, 'static_converged', merge(1, 0, converged))
+         call out%attributes_compare_static(dist, converged)
       end if
    end subroutine compare_static
 
@@ -314,10 +301,8 @@ contains
       wall = real(clock1 - clock0, wp)/rate
       ! output:snapshot_times after the end of the run: said in the file and the summary
       march%snap_missed = deck%output%snapshot_times(march%isnap:deck%output%nsnapshot)
-      if (size(march%snap_missed) > 0) call out%file%attr(out%file%id, 'snapshot_times_not_reached', march%snap_missed)
-      call out%file%attr(out%file%id, 'dt_initial', march%dt_initial)
-      call out%file%attr(out%file%id, 'dt_fallback_step', int(march%fallback_step))
-      ended = .not. any(state%status == [character(len=24) :: 'interrupted', 'blow-up', 'contact solver failure'])
+      call out%attributes_explicit_end(march%snap_missed, march%dt_initial, int(march%fallback_step))
+      ended = run_ended(state%status)
       ! the small-strain, small-displacement range: measured on the end state, said after the summary
       if (ended) then
          call validity%measure(model%mesh, state%u)

@@ -4,7 +4,8 @@
 !> buffered and flushed every `flush_samples` samples or `flush_seconds` of wall time; /final
 !> written at the end, also after a blow-up, so the file always opens.
 !> It reads the model (what the deck and the mesh define) and the state (what the engine
-!> computed: contact2d_state); it knows neither engine.
+!> computed: contact2d_state); it knows neither engine: the root attributes particular to an
+!> engine come as plain values (attributes_explicit*, attributes_static*).
 module contact2d_output
    use contact2d_kinds, only: wp, i8
    use contact2d_version, only: program_name, program_version, output_format_version
@@ -17,10 +18,11 @@ module contact2d_output
    use contact2d_strings, only: str
    use contact2d_sys, only: sys_write_file, sys_strerror
    use contact2d_outpath, only: sidecar_name
+   use contact2d_kkt, only: kkt_names
    use hdf5, only: hid_t
    implicit none
    private
-   public :: output_t, history_names
+   public :: output_t, history_names, static_figures_t
 
    !> History series: SPEC section 8 names first, then additions (docs/output.md).
    !> kinetic_energy and strain_energy are the staggered energies of the balance (SPEC section 6);
@@ -37,6 +39,21 @@ module contact2d_output
    integer, parameter :: nseries = size(history_names)
    integer, parameter :: flush_samples = 256
    real(wp), parameter :: flush_seconds = 2.0_wp
+
+   !> What the static engine leaves for its closing root attributes (attributes_static_end).
+   type :: static_figures_t
+      real(wp) :: kkt_max(4) = 0           !< largest relative KKT residuals (kkt_names)
+      integer :: increments = 0            !< solver:static_increments
+      integer :: steps = 0                 !< settled steps, halves included
+      integer :: splits = 0                !< halvings made
+      integer :: iterations = 0            !< PDAS iterations, all increments
+      integer :: outer_iterations = 0      !< threshold fixed-point iterations, all increments
+      real(wp) :: factor_nonzeros = 0      !< nonzeros of the CHOLMOD factor
+      real(wp) :: factor_flops = 0         !< its flops
+      real(wp) :: time_factor = 0          !< assembly and factorisation [s]
+      real(wp) :: time_condense = 0        !< Schur complement and A [s]
+      real(wp) :: time_solve = 0           !< increments: solves and PDAS [s]
+   end type static_figures_t
 
    !> An open output file.
    type :: output_t
@@ -59,6 +76,11 @@ module contact2d_output
       procedure :: flush_history => output_flush_history
       procedure :: snapshot => output_snapshot
       procedure :: finish => output_finish
+      procedure :: attributes_explicit => output_attributes_explicit
+      procedure :: attributes_explicit_end => output_attributes_explicit_end
+      procedure :: attributes_compare_static => output_attributes_compare_static
+      procedure :: attributes_static => output_attributes_static
+      procedure :: attributes_static_end => output_attributes_static_end
    end type output_t
 
 contains
@@ -157,6 +179,88 @@ contains
       errmsg = ''
       if (stat /= 0) errmsg = this%file%errmsg
    end subroutine output_open
+
+   !> An explicit run's root attributes at the start: the method, the step's bounds, the masses,
+   !> the kind of run and the energy put in at t = 0 (docs/output.md).
+   subroutine output_attributes_explicit(this, deck, model, initial_kinetic)
+      class(output_t), intent(inout) :: this
+      type(deck_t), intent(in) :: deck
+      type(model_t), intent(in) :: model
+      real(wp), intent(in) :: initial_kinetic   !< [mJ]
+      call this%file%attr(this%file%id, 'method', 'explicit')
+      call this%file%attr(this%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
+      call this%file%attr(this%file%id, 'dt_limit', trim(deck%solver%dt_limit))
+      call this%file%attr(this%file%id, 'added_mass', model%added_mass)
+      call this%file%attr(this%file%id, 'body_mass', model%body_mass)
+      if (model%omega2_power > 0) then
+         call this%file%attr(this%file%id, 'omega_max_power', sqrt(model%omega2_power))
+         call this%file%attr(this%file%id, 'dt_stable_estimate', 2/sqrt(model%omega2_power))
+      end if
+      call this%file%attr(this%file%id, 'dynamic', merge(1, 0, deck%dynamic))
+      call this%file%attr(this%file%id, 'convergence_test', merge(1, 0, deck%convergence_test))
+      call this%file%attr(this%file%id, 'initial_kinetic_energy', initial_kinetic)
+   end subroutine output_attributes_explicit
+
+   !> An explicit run's closing root attributes: output:snapshot_times after the end of the run
+   !> (if any), the step it started with and the step of the growing-mode fallback (-1: none).
+   subroutine output_attributes_explicit_end(this, snap_missed, dt_initial, fallback_step)
+      class(output_t), intent(inout) :: this
+      real(wp), intent(in) :: snap_missed(:)   !< [s]
+      real(wp), intent(in) :: dt_initial       !< [s]
+      integer, intent(in) :: fallback_step
+      if (size(snap_missed) > 0) call this%file%attr(this%file%id, 'snapshot_times_not_reached', snap_missed)
+      call this%file%attr(this%file%id, 'dt_initial', dt_initial)
+      call this%file%attr(this%file%id, 'dt_fallback_step', fallback_step)
+   end subroutine output_attributes_explicit_end
+
+   !> solver:compare_static: the energy distance of the end state to the static solution and
+   !> whether the static engine converged.
+   subroutine output_attributes_compare_static(this, dist, converged)
+      class(output_t), intent(inout) :: this
+      real(wp), intent(in) :: dist
+      logical, intent(in) :: converged
+      call this%file%attr(this%file%id, 'static_distance_energy', dist)
+      call this%file%attr(this%file%id, 'static_converged', merge(1, 0, converged))
+   end subroutine output_attributes_compare_static
+
+   !> A static run's root attributes at the start: those an explicit file has, with their static
+   !> values (docs/output.md).
+   subroutine output_attributes_static(this, deck, model)
+      class(output_t), intent(inout) :: this
+      type(deck_t), intent(in) :: deck
+      type(model_t), intent(in) :: model
+      call this%file%attr(this%file%id, 'method', 'static')
+      call this%file%attr(this%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
+      call this%file%attr(this%file%id, 'dt_limit', trim(deck%solver%dt_limit))
+      call this%file%attr(this%file%id, 'dt_initial', 0.0_wp)
+      call this%file%attr(this%file%id, 'dt_fallback_step', -1)
+      call this%file%attr(this%file%id, 'added_mass', model%added_mass)
+      call this%file%attr(this%file%id, 'body_mass', model%body_mass)
+      call this%file%attr(this%file%id, 'dynamic', 0)
+      call this%file%attr(this%file%id, 'convergence_test', 1)
+      call this%file%attr(this%file%id, 'initial_kinetic_energy', 0.0_wp)
+   end subroutine output_attributes_static
+
+   !> A static run's closing root attributes: the largest KKT residuals, the increments, steps
+   !> and halvings, the iterations, the factor's size and the engine's times (docs/output.md).
+   subroutine output_attributes_static_end(this, fig)
+      class(output_t), intent(inout) :: this
+      type(static_figures_t), intent(in) :: fig
+      integer :: i
+      do i = 1, 4
+         call this%file%attr(this%file%id, 'kkt_'//trim(kkt_names(i)), fig%kkt_max(i))
+      end do
+      call this%file%attr(this%file%id, 'static_increments', fig%increments)
+      call this%file%attr(this%file%id, 'static_steps', fig%steps)
+      call this%file%attr(this%file%id, 'static_splits', fig%splits)
+      call this%file%attr(this%file%id, 'static_iterations', fig%iterations)
+      call this%file%attr(this%file%id, 'static_outer_iterations', fig%outer_iterations)
+      call this%file%attr(this%file%id, 'factor_nonzeros', fig%factor_nonzeros)
+      call this%file%attr(this%file%id, 'factor_flops', fig%factor_flops)
+      call this%file%attr(this%file%id, 'time_factor_seconds', fig%time_factor)
+      call this%file%attr(this%file%id, 'time_condense_seconds', fig%time_condense)
+      call this%file%attr(this%file%id, 'time_solve_seconds', fig%time_solve)
+   end subroutine output_attributes_static_end
 
    !> Record one history sample (buffered).
    !> The contact's maxima and counts since the last sample are reset (they are per sample).
