@@ -11,14 +11,16 @@ module contact2d_friction_factory
 
 contains
 
-   !> Make the law named name. bound: Tresca s_i w_i [N] (0 where the tangential dof is prescribed);
-   !> slides: the node's tangential dof is free; coefficient: Coulomb mu; tresca_scope 'all'|'contact'.
+   !> Make the law named name. abscissa, weight, slides: the contact nodes' abscissae [mm],
+   !> weights w_i [mm] and free tangential dofs; coefficient: Coulomb mu; threshold, profile_s,
+   !> profile_values, tresca_scope: Tresca's uniform s [MPa] or profile [mm, MPa] and scope.
    !> law is left unallocated for 'frictionless'; stat /= 0 for an unknown name.
-   subroutine friction_law_create(name, bound, slides, coefficient, tresca_scope, law, stat, errmsg)
+   subroutine friction_law_create(name, abscissa, weight, slides, coefficient, threshold, profile_s, profile_values, &
+                                  tresca_scope, law, stat, errmsg)
       character(len=*), intent(in) :: name, tresca_scope
-      real(wp), intent(in) :: bound(:)
+      real(wp), intent(in) :: abscissa(:), weight(:)
       logical, intent(in) :: slides(:)
-      real(wp), intent(in) :: coefficient
+      real(wp), intent(in) :: coefficient, threshold, profile_s(:), profile_values(:)
       class(friction_law_t), allocatable, intent(out) :: law
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
@@ -30,7 +32,7 @@ contains
          allocate (tresca_law_t :: law)
          select type (law)
          type is (tresca_law_t)
-            call law%init(bound, tresca_scope == 'contact')
+            call law%init(abscissa, weight, slides, threshold, profile_s, profile_values, tresca_scope == 'contact')
          end select
       case ('coulomb')
          allocate (coulomb_law_t :: law)
