@@ -15,7 +15,7 @@ module contact2d_contact
    use contact2d_messages, only: messages_t
    use contact2d_lcp, only: lcp_t
    use contact2d_friction, only: friction_law_t
-   use contact2d_friction_factory, only: friction_law_create
+   use contact2d_friction_input, only: friction_input_t
    use contact2d_obstacle, only: obstacle_t
    implicit none
    private
@@ -38,12 +38,9 @@ module contact2d_contact
       !> solver's own numbers)
       integer, allocatable :: file_id(:)
       character(len=4) :: multiplier = 'P1'        !< 'P1' | 'P0'
-      character(len=16) :: friction = 'frictionless'  !< 'frictionless' | 'tresca' | 'coulomb'
-      real(wp) :: friction_coefficient = 0         !< Coulomb mu [-] (friction = 'coulomb')
-      real(wp) :: threshold = 0                    !< uniform s [MPa] (when no profile)
-      real(wp), allocatable :: profile_s(:)        !< abscissae of a piecewise-linear s [mm]
-      real(wp), allocatable :: profile_values(:)   !< s there [MPa]
-      character(len=8) :: tresca_scope = 'all'     !< 'all' | 'contact'
+      !> the friction law's input (the deck's contact:friction and its variables), which makes
+      !> the law on the contact nodes (docs/friction.md section 2); none: frictionless
+      class(friction_input_t), allocatable :: friction
       character(len=8) :: method = 'lagrange'      !< 'lagrange' | 'penalty'
       real(wp) :: penalty_stiffness = 0            !< k_p [MPa/mm]
    end type contact_config_t
@@ -299,27 +296,17 @@ contains
       stat = 0
    end subroutine init_geometry
 
-   !> The friction: the law made by the factory (docs/friction.md section 2) from the contact
-   !> nodes' abscissae, weights and free tangential dofs, its first limits and its per-node
-   !> thresholds for the output, and the step's rec_free0 column. stat /= 0: the factory refused
-   !> the law.
+   !> The friction: the law made by its input (friction_input_t%make, docs/friction.md section 2)
+   !> from the contact nodes' abscissae, weights and free tangential dofs, its first limits and
+   !> its per-node thresholds for the output, and the step's rec_free0 column.
    subroutine init_friction(this, cfg, stat, errmsg)
       type(contact_t), intent(inout) :: this
       type(contact_config_t), intent(in) :: cfg
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      real(wp), allocatable :: profile_s(:), profile_values(:)
 
-      profile_s = [real(wp) ::]
-      profile_values = [real(wp) ::]
-      if (allocated(cfg%profile_s)) then
-         profile_s = cfg%profile_s
-         profile_values = cfg%profile_values
-      end if
-      call friction_law_create(cfg%friction, this%abscissa, this%weight, this%slides, cfg%friction_coefficient, &
-                               cfg%threshold, profile_s, profile_values, cfg%tresca_scope, this%law, stat, errmsg)
-      if (stat /= 0) return
-      stat = 1
+      errmsg = ''
+      if (allocated(cfg%friction)) call cfg%friction%make(this%abscissa, this%weight, this%slides, this%law)
       this%friction = allocated(this%law)
       allocate (this%slip_limit(this%nc))
       if (this%friction) call this%law%limits(this%fn, this%fn, this%slip_limit)

@@ -3,7 +3,8 @@
 !> (SPEC section 4, step 3, as extended in docs/friction.md) finds the normal forces first,
 !> calls limits() once, then projects the trial stick forces onto [-limit_i, limit_i] node by
 !> node. Members: contact2d_friction_tresca (s_i w_i), contact2d_friction_coulomb (mu F_n,i);
-!> the factory contact2d_friction_factory makes one from the deck's contact:friction.
+!> the law's input (contact2d_friction_input, one contact2d_friction_<law>_input per law) makes
+!> one from the deck's contact:friction and its variables.
 module contact2d_friction
    use contact2d_kinds, only: wp
    implicit none

@@ -192,12 +192,7 @@ contains
             end if
             cfg%origin = c%origin
             cfg%multiplier = c%multiplier
-            cfg%friction = c%friction
-            cfg%friction_coefficient = c%friction_coefficient
-            cfg%threshold = c%threshold
-            cfg%profile_s = c%threshold_abscissa(1:c%npoints)
-            cfg%profile_values = c%threshold_values(1:c%npoints)
-            cfg%tresca_scope = c%tresca_scope
+            if (allocated(c%law)) allocate (cfg%friction, source=c%law)
             cfg%method = c%method
             cfg%penalty_stiffness = c%penalty_stiffness
             cfg%file_id = model%mesh%file_id([(g, g=1, model%mesh%nnode)])
