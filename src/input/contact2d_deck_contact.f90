@@ -9,16 +9,17 @@ module contact2d_deck_contact
    use contact2d_friction_frictionless_input, only: frictionless_input_t
    use contact2d_friction_coulomb_input, only: coulomb_input_t, coulomb_names
    use contact2d_friction_tresca_input, only: tresca_input_t, tresca_names
-   use contact2d_obstacle_plane_input, only: plane_input_t, plane_names, plane_claims, plane_input_read, &
-                                             plane_input_not_finite, plane_input_unused, plane_input_complete, &
-                                             plane_input_validate, plane_input_echo
-   use contact2d_obstacle_circle_input, only: circle_input_t, circle_names, circle_claims, circle_input_read, &
-                                              circle_input_too_long, circle_input_not_finite, circle_input_side, &
-                                              circle_input_unused, circle_input_validate, circle_input_echo
+   use contact2d_obstacle_input, only: obstacle_input_t, obstacle_input_box_t
+   use contact2d_obstacle_plane_input, only: plane_input_t, plane_names
+   use contact2d_obstacle_circle_input, only: circle_input_t, circle_names
    implicit none
    private
    public :: contact_cfg_t, contact_variables, contact_cfg_read, contact_cfg_not_finite
    public :: contact_cfg_validate, contact_cfg_echo, contact_cfg_publish, friction_registry, friction_law_names
+   public :: obstacle_registry, obstacle_shape_names
+
+   !> The obstacle shapes' variables, for the did-you-mean (a shape's names: its _input module).
+   character(len=*), parameter :: obstacle_variables = plane_names//' '//circle_names
 
    !> The friction laws' variables, for the did-you-mean (a law's names: its _input module).
    character(len=*), parameter :: friction_variables = tresca_names//' '//coulomb_names
@@ -26,7 +27,7 @@ module contact2d_deck_contact
    !> The variables of &contact (the group's own, the obstacles' and the friction laws'), for
    !> the did-you-mean of a misspelled name.
    character(len=*), parameter :: contact_variables = &
-      'edge boundary xmin xmax ymin ymax obstacle '//plane_names//' '//circle_names//' '// &
+      'edge boundary xmin xmax ymin ymax obstacle '//obstacle_variables//' '// &
       'origin direction multiplier friction '//friction_variables//' method penalty_stiffness'
 
    !> &contact: a candidate boundary against a rigid obstacle (SPEC section 3).
@@ -34,7 +35,7 @@ module contact2d_deck_contact
       logical :: present = .false.                 !< derived: the deck has a &contact group
       character(len=16) :: edge = ''               !< candidate side (built-in mesh)
       character(len=64) :: boundary = ''           !< candidate Gmsh physical curve (instead of edge)
-      character(len=8) :: obstacle = 'plane'       !< 'plane' | 'circle'
+      character(len=8) :: obstacle = 'plane'       !< a name of obstacle_registry
       real(wp) :: xmin = -unset, xmax = unset      !< x range of the candidate boundary [mm]
       real(wp) :: ymin = -unset, ymax = unset      !< y range of the candidate boundary [mm]
       real(wp) :: origin(2) = [unset, unset]       !< point O of the abscissa; default: first node
@@ -43,19 +44,18 @@ module contact2d_deck_contact
       character(len=16) :: friction = 'frictionless'  !< a name of friction_registry
       character(len=8) :: method = 'lagrange'      !< 'lagrange' | 'penalty'
       real(wp) :: penalty_stiffness = 0            !< k_p per unit length [MPa/mm], method='penalty'
-      type(plane_input_t) :: plane                 !< the plane obstacle's variables (their defaults)
-      type(circle_input_t) :: circle               !< the circular obstacle's variables
+      !> every shape's variables as read (obstacle_registry's order): a shape's variables given
+      !> with another shape are refused by that shape's module, so all are read and checked
+      type(obstacle_input_box_t), allocatable :: shapes(:)
+      !> the chosen shape's input (contact:obstacle), set once the deck is valid
+      !> (contact_cfg_publish); the model makes the obstacle from it (obstacle_input_t%make)
+      class(obstacle_input_t), allocatable :: shape
       !> every law's variables as read (friction_registry's order): a law's variables given
       !> with another law are refused by that law's module, so all are read and checked
       type(friction_input_box_t), allocatable :: laws(:)
       !> the chosen law's input (contact:friction), set once the deck is valid
       !> (contact_cfg_publish); the model makes the law from it (friction_input_t%make)
       class(friction_input_t), allocatable :: law
-      !> The names the model reads, copied from the obstacles' own input once the deck is valid
-      !> (contact2d_deck's validate calls contact_cfg_publish): their meaning, units and
-      !> defaults are those of plane and circle above.
-      real(wp) :: obstacle_point(2), obstacle_normal(2), obstacle_center(2), obstacle_radius
-      character(len=8) :: obstacle_side
    end type contact_cfg_t
 
 contains
@@ -83,10 +83,33 @@ contains
       end do
    end function friction_law_names
 
-   !> The group's laws as read so far (the registry's defaults before the first read).
+   !> The registry of obstacle shapes: every shape's input with its defaults, one line per
+   !> shape, in the order the messages and the documentation list them (docs/geometry.md).
+   function obstacle_registry() result(shapes)
+      type(obstacle_input_box_t), allocatable :: shapes(:)
+      allocate (shapes(2))
+      allocate (shapes(1)%input, source=plane_input_t())
+      allocate (shapes(2)%input, source=circle_input_t())
+   end function obstacle_registry
+
+   !> The registry's shape names, quoted and comma-separated, for messages.
+   function obstacle_shape_names() result(text)
+      character(len=:), allocatable :: text
+      type(obstacle_input_box_t), allocatable :: shapes(:)
+      integer :: k
+      shapes = obstacle_registry()
+      text = ''
+      do k = 1, size(shapes)
+         if (k > 1) text = text//', '
+         text = text//"'"//shapes(k)%input%name()//"'"
+      end do
+   end function obstacle_shape_names
+
+   !> The group's laws and shapes as read so far (the registries' defaults before the first read).
    subroutine ensure_laws(c)
       type(contact_cfg_t), intent(inout) :: c
       if (.not. allocated(c%laws)) c%laws = friction_registry()
+      if (.not. allocated(c%shapes)) c%shapes = obstacle_registry()
    end subroutine ensure_laws
 
    !> Read the group's lines blk, then the --set overrides ovr: each assignment, in the order
@@ -134,26 +157,29 @@ contains
       if (too_long(where, 'method', method, len(cfg%method), stat, errmsg)) return
       if (too_long(where, 'boundary', boundary, len(cfg%boundary), stat, errmsg)) return
       if (too_long(where, 'obstacle', obstacle, len(cfg%obstacle), stat, errmsg)) return
-      if (circle_input_too_long(cfg%circle, where, stat, errmsg)) return
+      do k = 1, size(cfg%shapes)
+         if (cfg%shapes(k)%input%too_long(where, stat, errmsg)) return
+      end do
       cfg%edge = edge; cfg%friction = friction; cfg%direction = direction; cfg%multiplier = multiplier
       cfg%method = method; cfg%boundary = boundary; cfg%obstacle = obstacle
    contains
       !> One assignment (namelist records) read by the module that claims the variable name.
       subroutine read_one(name, records, prefix)
          character(len=*), intent(in) :: name, records(:), prefix
-         if (plane_claims(name)) then
-            call plane_input_read(records, prefix, contact_variables, cfg%plane, stat, errmsg)
-         else if (circle_claims(name)) then
-            call circle_input_read(records, prefix, contact_variables, cfg%circle, stat, errmsg)
-         else
-            do k = 1, size(cfg%laws)
-               if (cfg%laws(k)%input%claims(name)) then
-                  call cfg%laws(k)%input%read(records, prefix, contact_variables, stat, errmsg)
-                  return
-               end if
-            end do
-            call read_own(records, prefix)
-         end if
+         integer :: k
+         do k = 1, size(cfg%shapes)
+            if (cfg%shapes(k)%input%claims(name)) then
+               call cfg%shapes(k)%input%read(records, prefix, contact_variables, stat, errmsg)
+               return
+            end if
+         end do
+         do k = 1, size(cfg%laws)
+            if (cfg%laws(k)%input%claims(name)) then
+               call cfg%laws(k)%input%read(records, prefix, contact_variables, stat, errmsg)
+               return
+            end if
+         end do
+         call read_own(records, prefix)
       end subroutine read_one
       !> An assignment of the group's own variables (or of no known name: the runtime's refusal).
       subroutine read_own(records, prefix)
@@ -183,7 +209,11 @@ contains
       if (check_finite('contact:xmax', c%xmax, errmsg)) return
       if (check_finite('contact:ymin', c%ymin, errmsg)) return
       if (check_finite('contact:ymax', c%ymax, errmsg)) return
-      if (plane_input_not_finite(c%plane, errmsg)) return
+      if (allocated(c%shapes)) then
+         do k = 1, size(c%shapes)
+            if (c%shapes(k)%input%not_finite(errmsg)) return
+         end do
+      end if
       if (check_finite('contact:origin', c%origin, errmsg)) return
       if (allocated(c%laws)) then
          do k = 1, size(c%laws)
@@ -191,7 +221,6 @@ contains
          end do
       end if
       if (check_finite('contact:penalty_stiffness', c%penalty_stiffness, errmsg)) return
-      if (circle_input_not_finite(c%circle, errmsg)) return
       bad = .false.
    end function contact_cfg_not_finite
 
@@ -239,29 +268,37 @@ contains
    logical function obstacle_refused(c, errmsg) result(bad)
       type(contact_cfg_t), intent(inout) :: c
       character(len=:), allocatable, intent(inout) :: errmsg
+      integer :: k, chosen
       bad = .true.
+      call ensure_laws(c)
       c%obstacle = lower(c%obstacle)
-      if (.not. any(c%obstacle == [character(len=8) :: 'plane', 'circle'])) then
-         errmsg = "contact:obstacle = '"//trim(c%obstacle)//"' is not one of 'plane', 'circle'"
+      chosen = chosen_shape(c)
+      if (chosen == 0) then
+         errmsg = "contact:obstacle = '"//trim(c%obstacle)//"' is not one of "//obstacle_shape_names()
          return
       end if
-      if (circle_input_side(c%circle, errmsg)) return
+      do k = 1, size(c%shapes)
+         if (c%shapes(k)%input%prepare(errmsg)) return
+      end do
       if (count(c%origin == unset) == 1) then
          errmsg = 'contact:origin = '//str(minval(c%origin))// &
                   ' has one component; give both, origin = x, y (mm)'
          return
       end if
-      if (c%obstacle == 'circle') then
-         if (circle_input_validate(c%circle, errmsg)) return
-      end if
-      if (plane_input_unused(c%plane, c%obstacle, errmsg)) return
-      if (circle_input_unused(c%circle, c%obstacle, errmsg)) return
-      if (plane_input_complete(c%plane, errmsg)) return
+      if (c%shapes(chosen)%input%validate_chosen(errmsg)) return
+      do k = 1, size(c%shapes)
+         if (c%shapes(k)%input%unused(trim(c%obstacle), errmsg)) return
+      end do
+      do k = 1, size(c%shapes)
+         if (c%shapes(k)%input%complete(errmsg)) return
+      end do
       if (.not. (c%xmin <= c%xmax .and. c%ymin <= c%ymax)) then
          errmsg = 'contact: the range needs xmin <= xmax and ymin <= ymax'
          return
       end if
-      if (plane_input_validate(c%plane, errmsg)) return
+      do k = 1, size(c%shapes)
+         if (c%shapes(k)%input%validate_always(errmsg)) return
+      end do
       bad = .false.
    end function obstacle_refused
 
@@ -301,8 +338,16 @@ contains
       k = 0
    end function chosen_law
 
-   !> Copy the obstacles' values into the names the model reads (contact_cfg_t) and keep the
-   !> chosen law's input (c%law).
+   !> The index of the chosen shape (contact:obstacle) in c%shapes; 0 for a name not registered.
+   integer function chosen_shape(c) result(k)
+      type(contact_cfg_t), intent(in) :: c
+      do k = 1, size(c%shapes)
+         if (c%shapes(k)%input%name() == trim(c%obstacle)) return
+      end do
+      k = 0
+   end function chosen_shape
+
+   !> Keep the chosen shape's input (c%shape) and the chosen law's input (c%law).
    subroutine contact_cfg_publish(c)
       type(contact_cfg_t), intent(inout) :: c
       integer :: k
@@ -310,11 +355,9 @@ contains
       if (allocated(c%law)) deallocate (c%law)
       k = chosen_law(c)
       if (k > 0) allocate (c%law, source=c%laws(k)%input)
-      c%obstacle_point = c%plane%obstacle_point
-      c%obstacle_normal = c%plane%obstacle_normal
-      c%obstacle_center = c%circle%obstacle_center
-      c%obstacle_radius = c%circle%obstacle_radius
-      c%obstacle_side = c%circle%obstacle_side
+      if (allocated(c%shape)) deallocate (c%shape)
+      k = chosen_shape(c)
+      if (k > 0) allocate (c%shape, source=c%shapes(k)%input)
    end subroutine contact_cfg_publish
 
    !> The group's effective values as deck text (only the variables of the chosen obstacle,
@@ -326,11 +369,8 @@ contains
       integer :: k
       text = '&contact'//nl//place_text(c%edge, c%boundary)//range_text(c%xmin, c%xmax, c%ymin, c%ymax)// &
              kv('obstacle', quoted(c%obstacle))
-      if (c%obstacle == 'circle') then
-         text = text//circle_input_echo(c%circle)
-      else
-         text = text//plane_input_echo(c%plane)
-      end if
+      k = chosen_shape(c)
+      if (k > 0) text = text//c%shapes(k)%input%echo()
       if (all(c%origin /= unset)) text = text//kv('origin', reals(c%origin))
       text = text//kv('direction', quoted(c%direction))//kv('multiplier', quoted(c%multiplier))// &
              kv('friction', quoted(c%friction))
