@@ -6,8 +6,8 @@
 !> Geometry is fixed and precomputed: contact nodes x_0..x_N ordered by abscissa; per node the
 !> gap g_i and the body's outward normal n_i = -nu_i from the node's closest point on the
 !> obstacle in the initial configuration (small deformation, docs/geometry.md), t_i = (-n2, n1);
-!> weights w_i = integral of phi_i, thresholds s_i w_i, and for P0 the coupling D (tridiagonal)
-!> and the LCP matrix D M^-1 D^T (five bands). Forces: F_n, F_t per node; the force on the body
+!> weights w_i = integral of phi_i, the friction law made from them (its limits: Tresca s_i w_i),
+!> and for P0 the coupling D (tridiagonal) and the LCP matrix D M^-1 D^T (five bands). Forces: F_n, F_t per node; the force on the body
 !> is -F_n n_i - F_t t_i. The step reads these per-node arrays only, never the obstacle's shape.
 module contact2d_contact
    use contact2d_kinds, only: wp, i8
@@ -15,7 +15,7 @@ module contact2d_contact
    use contact2d_messages, only: messages_t
    use contact2d_lcp, only: lcp_t
    use contact2d_friction, only: friction_law_t
-   use contact2d_friction_factory, only: friction_law_create
+   use contact2d_friction_input, only: friction_input_t
    use contact2d_obstacle, only: obstacle_t
    implicit none
    private
@@ -38,12 +38,9 @@ module contact2d_contact
       !> solver's own numbers)
       integer, allocatable :: file_id(:)
       character(len=4) :: multiplier = 'P1'        !< 'P1' | 'P0'
-      character(len=16) :: friction = 'frictionless'  !< 'frictionless' | 'tresca' | 'coulomb'
-      real(wp) :: friction_coefficient = 0         !< Coulomb mu [-] (friction = 'coulomb')
-      real(wp) :: threshold = 0                    !< uniform s [MPa] (when no profile)
-      real(wp), allocatable :: profile_s(:)        !< abscissae of a piecewise-linear s [mm]
-      real(wp), allocatable :: profile_values(:)   !< s there [MPa]
-      character(len=8) :: tresca_scope = 'all'     !< 'all' | 'contact'
+      !> the friction law's input (the deck's contact:friction and its variables), which makes
+      !> the law on the contact nodes (docs/friction.md section 2); none: frictionless
+      class(friction_input_t), allocatable :: friction
       character(len=8) :: method = 'lagrange'      !< 'lagrange' | 'penalty'
       real(wp) :: penalty_stiffness = 0            !< k_p [MPa/mm]
    end type contact_config_t
@@ -60,11 +57,9 @@ module contact2d_contact
       !> the tangential limits never change (no friction, or law%fixed): slip_limit is
       !> set once and P1 finds F_n in the same pass as the rest of the step
       logical :: limits_fixed = .false.
-      real(wp) :: friction_coefficient = 0  !< Coulomb mu [-] (0 unless friction = 'coulomb')
       !> the law makes a node with F_n,i > 0 carry friction (law%depends_on_fn: Coulomb with
       !> mu > 0), so with P0 it counts as touching even where its own dual cell is open
       logical :: fn_touches = .false.
-      logical :: friction_in_contact_only = .false.   !< tresca_scope = 'contact'
       real(wp), allocatable :: normal(:, :)   !< n_i, outward normal of the body (2, nc)
       real(wp), allocatable :: tangent(:, :)  !< t_i = (-n2, n1) (2, nc)
       integer, allocatable :: node(:)       !< mesh node of each contact node (nc)
@@ -72,8 +67,7 @@ module contact2d_contact
       real(wp), allocatable :: h(:)         !< segment lengths h_i = |x_(i+1) - x_i| (nc-1) [mm]
       real(wp), allocatable :: weight(:)    !< w_i = integral of phi_i over Gamma_c [mm]
       real(wp), allocatable :: gap(:)       !< initial gap g_i [mm]
-      real(wp), allocatable :: threshold(:) !< s_i [MPa]
-      real(wp), allocatable :: limit(:)     !< Tresca s_i w_i [N]
+      real(wp), allocatable :: threshold(:) !< the law's per-node threshold s_i [MPa] (law%node_thresholds)
       real(wp), allocatable :: slip_limit(:)  !< tangential limit of the last step [N] (the law's)
       real(wp), allocatable :: mass(:)      !< lumped mass m_i [t]
       logical, allocatable :: slides(:)     !< tangential dof free (friction applies)
@@ -256,7 +250,7 @@ contains
       associate (nc => this%nc)
          this%gap = pack(cand_gap, keep)
          allocate (this%abscissa(nc), this%h(max(nc - 1, 0)), this%weight(nc), &
-                   this%threshold(nc), this%limit(nc), this%mass(nc), this%slides(nc), &
+                   this%threshold(nc), this%mass(nc), this%slides(nc), &
                    this%fn(nc), this%ft(nc), this%mu(nc), this%dtil(nc), this%b(nc), this%stuck(nc), &
                    this%last_status(nc), this%cur_status(nc))
          this%stuck = .false.
@@ -302,44 +296,24 @@ contains
       stat = 0
    end subroutine init_geometry
 
-   !> The friction: thresholds s_i (uniform, or piecewise linear in the abscissa), Tresca limits
-   !> s_i w_i where the tangential dof is free, the friction law made by the factory
-   !> (docs/friction.md section 2) and its first limits, and the step's rec_free0 column.
-   !> stat /= 0: the factory refused the law.
+   !> The friction: the law made by its input (friction_input_t%make, docs/friction.md section 2)
+   !> from the contact nodes' abscissae, weights and free tangential dofs, its first limits and
+   !> its per-node thresholds for the output, and the step's rec_free0 column.
    subroutine init_friction(this, cfg, stat, errmsg)
       type(contact_t), intent(inout) :: this
       type(contact_config_t), intent(in) :: cfg
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      integer :: i
 
-      ! friction threshold s_i: uniform, or piecewise linear in the abscissa (held beyond the ends)
-      this%friction = cfg%friction == 'tresca'   ! Tresca's s_i below; the law is made after
-      this%friction_in_contact_only = cfg%tresca_scope == 'contact'
-      if (allocated(cfg%profile_s)) then
-         if (size(cfg%profile_s) > 0) then
-            do i = 1, this%nc
-               this%threshold(i) = interpolate(cfg%profile_s, cfg%profile_values, this%abscissa(i))
-            end do
-         else
-            this%threshold = cfg%threshold
-         end if
-      else
-         this%threshold = cfg%threshold
-      end if
-      if (.not. this%friction) this%threshold = 0
-      ! no friction force where the tangential dof is prescribed: the reaction carries it
-      this%limit = merge(this%threshold*this%weight, 0.0_wp, this%slides)
-      ! the friction law (docs/friction.md section 2): Tresca s_i w_i, Coulomb mu F_n,i
-      this%friction_coefficient = cfg%friction_coefficient
-      call friction_law_create(cfg%friction, this%limit, this%slides, this%friction_coefficient, cfg%tresca_scope, &
-                               this%law, stat, errmsg)
-      if (stat /= 0) return
-      stat = 1
+      errmsg = ''
+      if (allocated(cfg%friction)) call cfg%friction%make(this%abscissa, this%weight, this%slides, this%law)
       this%friction = allocated(this%law)
       allocate (this%slip_limit(this%nc))
       if (this%friction) call this%law%limits(this%fn, this%fn, this%slip_limit)
       if (.not. this%friction) this%slip_limit = 0
+      ! the law's thresholds s_i, written as /contact/threshold (zeros without friction)
+      this%threshold = 0
+      if (this%friction) call this%law%node_thresholds(this%threshold)
       this%limits_fixed = .not. this%friction
       if (this%friction) this%limits_fixed = this%law%fixed
       if (this%friction) this%fn_touches = this%law%depends_on_fn()
@@ -355,21 +329,6 @@ contains
       user_id = k
       if (allocated(cfg%file_id)) user_id = cfg%file_id(k)
    end function user_id
-
-   pure real(wp) function interpolate(xs, ys, x) result(y)
-      real(wp), intent(in) :: xs(:), ys(:), x
-      integer :: k
-      if (x <= xs(1)) then
-         y = ys(1)
-      else if (x >= xs(size(xs))) then
-         y = ys(size(ys))
-      else
-         do k = 1, size(xs) - 1
-            if (x <= xs(k + 1)) exit
-         end do
-         y = ys(k) + (ys(k + 1) - ys(k))*(x - xs(k))/(xs(k + 1) - xs(k))
-      end if
-   end function interpolate
 
    !> D_ij = integral over dual cell i of phi_j (SPEC section 3) and the LCP matrix D M^-1 D^T.
    subroutine setup_p0(this)

@@ -5,60 +5,112 @@ module contact2d_deck_contact
    use contact2d_deck_syntax, only: unset, max_points, line_len, override_t, read_failed, too_long, &
                                     place_problem, place_text, range_text, kv, quoted, reals, upper2, &
                                     assignment_t, split_assignments, assigned_names, syntax_only
-   use contact2d_friction_coulomb_input, only: coulomb_input_t, coulomb_names, coulomb_claims, coulomb_input_read, &
-                                               coulomb_input_not_finite, coulomb_input_unused, &
-                                               coulomb_input_validate, coulomb_input_echo
-   use contact2d_friction_tresca_input, only: tresca_input_t, tresca_names, tresca_claims, tresca_input_read, &
-                                              tresca_input_too_long, tresca_input_not_finite, tresca_input_count, &
-                                              tresca_input_unused, tresca_input_validate, tresca_input_echo, &
-                                              tresca_scope_echo
-   use contact2d_obstacle_plane_input, only: plane_input_t, plane_names, plane_claims, plane_input_read, &
-                                             plane_input_not_finite, plane_input_unused, plane_input_complete, &
-                                             plane_input_validate, plane_input_echo
-   use contact2d_obstacle_circle_input, only: circle_input_t, circle_names, circle_claims, circle_input_read, &
-                                              circle_input_too_long, circle_input_not_finite, circle_input_side, &
-                                              circle_input_unused, circle_input_validate, circle_input_echo
+   use contact2d_friction_input, only: friction_input_t, friction_input_box_t
+   use contact2d_friction_frictionless_input, only: frictionless_input_t
+   use contact2d_friction_coulomb_input, only: coulomb_input_t, coulomb_names
+   use contact2d_friction_tresca_input, only: tresca_input_t, tresca_names
+   use contact2d_obstacle_input, only: obstacle_input_t, obstacle_input_box_t
+   use contact2d_obstacle_plane_input, only: plane_input_t, plane_names
+   use contact2d_obstacle_circle_input, only: circle_input_t, circle_names
    implicit none
    private
    public :: contact_cfg_t, contact_variables, contact_cfg_read, contact_cfg_not_finite
-   public :: contact_cfg_validate, contact_cfg_echo, contact_cfg_publish
+   public :: contact_cfg_validate, contact_cfg_echo, contact_cfg_publish, friction_registry, friction_law_names
+   public :: obstacle_registry, obstacle_shape_names
+
+   !> The obstacle shapes' variables, for the did-you-mean (a shape's names: its _input module).
+   character(len=*), parameter :: obstacle_variables = plane_names//' '//circle_names
+
+   !> The friction laws' variables, for the did-you-mean (a law's names: its _input module).
+   character(len=*), parameter :: friction_variables = tresca_names//' '//coulomb_names
 
    !> The variables of &contact (the group's own, the obstacles' and the friction laws'), for
    !> the did-you-mean of a misspelled name.
    character(len=*), parameter :: contact_variables = &
-      'edge boundary xmin xmax ymin ymax obstacle '//plane_names//' '//circle_names//' '// &
-      'origin direction multiplier friction '//coulomb_names//' '//tresca_names//' method penalty_stiffness'
+      'edge boundary xmin xmax ymin ymax obstacle '//obstacle_variables//' '// &
+      'origin direction multiplier friction '//friction_variables//' method penalty_stiffness'
 
    !> &contact: a candidate boundary against a rigid obstacle (SPEC section 3).
    type :: contact_cfg_t
       logical :: present = .false.                 !< derived: the deck has a &contact group
       character(len=16) :: edge = ''               !< candidate side (built-in mesh)
       character(len=64) :: boundary = ''           !< candidate Gmsh physical curve (instead of edge)
-      character(len=8) :: obstacle = 'plane'       !< 'plane' | 'circle'
+      character(len=8) :: obstacle = 'plane'       !< a name of obstacle_registry
       real(wp) :: xmin = -unset, xmax = unset      !< x range of the candidate boundary [mm]
       real(wp) :: ymin = -unset, ymax = unset      !< y range of the candidate boundary [mm]
       real(wp) :: origin(2) = [unset, unset]       !< point O of the abscissa; default: first node
       character(len=4) :: direction = 'ccw'        !< abscissa runs 'ccw' or 'cw' along the boundary
       character(len=4) :: multiplier = 'P1'        !< 'P1' | 'P0'
-      character(len=16) :: friction = 'frictionless'  !< 'frictionless' | 'tresca' | 'coulomb'
+      character(len=16) :: friction = 'frictionless'  !< a name of friction_registry
       character(len=8) :: method = 'lagrange'      !< 'lagrange' | 'penalty'
       real(wp) :: penalty_stiffness = 0            !< k_p per unit length [MPa/mm], method='penalty'
-      type(plane_input_t) :: plane                 !< the plane obstacle's variables (their defaults)
-      type(circle_input_t) :: circle               !< the circular obstacle's variables
-      type(coulomb_input_t) :: coulomb             !< Coulomb friction's variables
-      type(tresca_input_t) :: tresca               !< Tresca friction's variables
-      !> The names the model reads, copied from the obstacles' and laws' own input once the deck
-      !> is valid (contact2d_deck's validate calls contact_cfg_publish): their meaning, units
-      !> and defaults are those of plane, circle, coulomb and tresca above.
-      real(wp) :: obstacle_point(2), obstacle_normal(2), obstacle_center(2), obstacle_radius
-      character(len=8) :: obstacle_side
-      real(wp) :: friction_coefficient, threshold
-      real(wp) :: threshold_abscissa(max_points), threshold_values(max_points)
-      integer :: npoints
-      character(len=8) :: tresca_scope
+      !> every shape's variables as read (obstacle_registry's order): a shape's variables given
+      !> with another shape are refused by that shape's module, so all are read and checked
+      type(obstacle_input_box_t), allocatable :: shapes(:)
+      !> the chosen shape's input (contact:obstacle), set once the deck is valid
+      !> (contact_cfg_publish); the model makes the obstacle from it (obstacle_input_t%make)
+      class(obstacle_input_t), allocatable :: shape
+      !> every law's variables as read (friction_registry's order): a law's variables given
+      !> with another law are refused by that law's module, so all are read and checked
+      type(friction_input_box_t), allocatable :: laws(:)
+      !> the chosen law's input (contact:friction), set once the deck is valid
+      !> (contact_cfg_publish); the model makes the law from it (friction_input_t%make)
+      class(friction_input_t), allocatable :: law
    end type contact_cfg_t
 
 contains
+
+   !> The registry of friction laws: every law's input with its defaults, one line per law, in
+   !> the order the messages and the documentation list them (docs/friction.md section 2).
+   function friction_registry() result(laws)
+      type(friction_input_box_t), allocatable :: laws(:)
+      allocate (laws(3))
+      allocate (laws(1)%input, source=frictionless_input_t())
+      allocate (laws(2)%input, source=tresca_input_t())
+      allocate (laws(3)%input, source=coulomb_input_t())
+   end function friction_registry
+
+   !> The registry's law names, quoted and comma-separated, for messages.
+   function friction_law_names() result(text)
+      character(len=:), allocatable :: text
+      type(friction_input_box_t), allocatable :: laws(:)
+      integer :: k
+      laws = friction_registry()
+      text = ''
+      do k = 1, size(laws)
+         if (k > 1) text = text//', '
+         text = text//"'"//laws(k)%input%name()//"'"
+      end do
+   end function friction_law_names
+
+   !> The registry of obstacle shapes: every shape's input with its defaults, one line per
+   !> shape, in the order the messages and the documentation list them (docs/geometry.md).
+   function obstacle_registry() result(shapes)
+      type(obstacle_input_box_t), allocatable :: shapes(:)
+      allocate (shapes(2))
+      allocate (shapes(1)%input, source=plane_input_t())
+      allocate (shapes(2)%input, source=circle_input_t())
+   end function obstacle_registry
+
+   !> The registry's shape names, quoted and comma-separated, for messages.
+   function obstacle_shape_names() result(text)
+      character(len=:), allocatable :: text
+      type(obstacle_input_box_t), allocatable :: shapes(:)
+      integer :: k
+      shapes = obstacle_registry()
+      text = ''
+      do k = 1, size(shapes)
+         if (k > 1) text = text//', '
+         text = text//"'"//shapes(k)%input%name()//"'"
+      end do
+   end function obstacle_shape_names
+
+   !> The group's laws and shapes as read so far (the registries' defaults before the first read).
+   subroutine ensure_laws(c)
+      type(contact_cfg_t), intent(inout) :: c
+      if (.not. allocated(c%laws)) c%laws = friction_registry()
+      if (.not. allocated(c%shapes)) c%shapes = obstacle_registry()
+   end subroutine ensure_laws
 
    !> Read the group's lines blk, then the --set overrides ovr: each assignment, in the order
    !> of the text, by the module that claims its name (read_one).
@@ -73,7 +125,8 @@ contains
       character(len=line_len), allocatable :: names(:)
       character(len=line_len) :: edge, friction, direction, multiplier, method, boundary, obstacle
       character(len=:), allocatable :: name
-      integer :: i, paren
+      integer :: i, k, paren
+      call ensure_laws(cfg)
       ! the group's own strings at full length while reading, so that an over-long value is
       ! refused (too_long), never cut
       edge = cfg%edge; friction = cfg%friction; direction = cfg%direction; multiplier = cfg%multiplier
@@ -98,28 +151,35 @@ contains
       if (too_long(where, 'friction', friction, len(cfg%friction), stat, errmsg)) return
       if (too_long(where, 'direction', direction, len(cfg%direction), stat, errmsg)) return
       if (too_long(where, 'multiplier', multiplier, len(cfg%multiplier), stat, errmsg)) return
-      if (tresca_input_too_long(cfg%tresca, where, stat, errmsg)) return
+      do k = 1, size(cfg%laws)
+         if (cfg%laws(k)%input%too_long(where, stat, errmsg)) return
+      end do
       if (too_long(where, 'method', method, len(cfg%method), stat, errmsg)) return
       if (too_long(where, 'boundary', boundary, len(cfg%boundary), stat, errmsg)) return
       if (too_long(where, 'obstacle', obstacle, len(cfg%obstacle), stat, errmsg)) return
-      if (circle_input_too_long(cfg%circle, where, stat, errmsg)) return
+      do k = 1, size(cfg%shapes)
+         if (cfg%shapes(k)%input%too_long(where, stat, errmsg)) return
+      end do
       cfg%edge = edge; cfg%friction = friction; cfg%direction = direction; cfg%multiplier = multiplier
       cfg%method = method; cfg%boundary = boundary; cfg%obstacle = obstacle
    contains
       !> One assignment (namelist records) read by the module that claims the variable name.
       subroutine read_one(name, records, prefix)
          character(len=*), intent(in) :: name, records(:), prefix
-         if (plane_claims(name)) then
-            call plane_input_read(records, prefix, contact_variables, cfg%plane, stat, errmsg)
-         else if (circle_claims(name)) then
-            call circle_input_read(records, prefix, contact_variables, cfg%circle, stat, errmsg)
-         else if (coulomb_claims(name)) then
-            call coulomb_input_read(records, prefix, contact_variables, cfg%coulomb, stat, errmsg)
-         else if (tresca_claims(name)) then
-            call tresca_input_read(records, prefix, contact_variables, cfg%tresca, stat, errmsg)
-         else
-            call read_own(records, prefix)
-         end if
+         integer :: k
+         do k = 1, size(cfg%shapes)
+            if (cfg%shapes(k)%input%claims(name)) then
+               call cfg%shapes(k)%input%read(records, prefix, contact_variables, stat, errmsg)
+               return
+            end if
+         end do
+         do k = 1, size(cfg%laws)
+            if (cfg%laws(k)%input%claims(name)) then
+               call cfg%laws(k)%input%read(records, prefix, contact_variables, stat, errmsg)
+               return
+            end if
+         end do
+         call read_own(records, prefix)
       end subroutine read_one
       !> An assignment of the group's own variables (or of no known name: the runtime's refusal).
       subroutine read_own(records, prefix)
@@ -143,17 +203,24 @@ contains
    logical function contact_cfg_not_finite(c, errmsg) result(bad)
       type(contact_cfg_t), intent(in) :: c
       character(len=:), allocatable, intent(inout) :: errmsg
+      integer :: k
       bad = .true.
       if (check_finite('contact:xmin', c%xmin, errmsg)) return
       if (check_finite('contact:xmax', c%xmax, errmsg)) return
       if (check_finite('contact:ymin', c%ymin, errmsg)) return
       if (check_finite('contact:ymax', c%ymax, errmsg)) return
-      if (plane_input_not_finite(c%plane, errmsg)) return
+      if (allocated(c%shapes)) then
+         do k = 1, size(c%shapes)
+            if (c%shapes(k)%input%not_finite(errmsg)) return
+         end do
+      end if
       if (check_finite('contact:origin', c%origin, errmsg)) return
-      if (tresca_input_not_finite(c%tresca, errmsg)) return
+      if (allocated(c%laws)) then
+         do k = 1, size(c%laws)
+            if (c%laws(k)%input%not_finite(errmsg)) return
+         end do
+      end if
       if (check_finite('contact:penalty_stiffness', c%penalty_stiffness, errmsg)) return
-      if (coulomb_input_not_finite(c%coulomb, errmsg)) return
-      if (circle_input_not_finite(c%circle, errmsg)) return
       bad = .false.
    end function contact_cfg_not_finite
 
@@ -201,29 +268,37 @@ contains
    logical function obstacle_refused(c, errmsg) result(bad)
       type(contact_cfg_t), intent(inout) :: c
       character(len=:), allocatable, intent(inout) :: errmsg
+      integer :: k, chosen
       bad = .true.
+      call ensure_laws(c)
       c%obstacle = lower(c%obstacle)
-      if (.not. any(c%obstacle == [character(len=8) :: 'plane', 'circle'])) then
-         errmsg = "contact:obstacle = '"//trim(c%obstacle)//"' is not one of 'plane', 'circle'"
+      chosen = chosen_shape(c)
+      if (chosen == 0) then
+         errmsg = "contact:obstacle = '"//trim(c%obstacle)//"' is not one of "//obstacle_shape_names()
          return
       end if
-      if (circle_input_side(c%circle, errmsg)) return
+      do k = 1, size(c%shapes)
+         if (c%shapes(k)%input%prepare(errmsg)) return
+      end do
       if (count(c%origin == unset) == 1) then
          errmsg = 'contact:origin = '//str(minval(c%origin))// &
                   ' has one component; give both, origin = x, y (mm)'
          return
       end if
-      if (c%obstacle == 'circle') then
-         if (circle_input_validate(c%circle, errmsg)) return
-      end if
-      if (plane_input_unused(c%plane, c%obstacle, errmsg)) return
-      if (circle_input_unused(c%circle, c%obstacle, errmsg)) return
-      if (plane_input_complete(c%plane, errmsg)) return
+      if (c%shapes(chosen)%input%validate_chosen(errmsg)) return
+      do k = 1, size(c%shapes)
+         if (c%shapes(k)%input%unused(trim(c%obstacle), errmsg)) return
+      end do
+      do k = 1, size(c%shapes)
+         if (c%shapes(k)%input%complete(errmsg)) return
+      end do
       if (.not. (c%xmin <= c%xmax .and. c%ymin <= c%ymax)) then
          errmsg = 'contact: the range needs xmin <= xmax and ymin <= ymax'
          return
       end if
-      if (plane_input_validate(c%plane, errmsg)) return
+      do k = 1, size(c%shapes)
+         if (c%shapes(k)%input%validate_always(errmsg)) return
+      end do
       bad = .false.
    end function obstacle_refused
 
@@ -232,34 +307,57 @@ contains
    logical function friction_refused(c, errmsg) result(bad)
       type(contact_cfg_t), intent(inout) :: c
       character(len=:), allocatable, intent(inout) :: errmsg
+      integer :: k
       bad = .true.
+      call ensure_laws(c)
       c%friction = lower(c%friction)
-      if (.not. any(c%friction == [character(len=16) :: 'frictionless', 'tresca', 'coulomb'])) then
-         errmsg = "contact:friction = '"//trim(c%friction)//"' is not one of 'frictionless', 'tresca', 'coulomb'"
+      if (chosen_law(c) == 0) then
+         errmsg = "contact:friction = '"//trim(c%friction)//"' is not one of "//friction_law_names()
          return
       end if
-      if (tresca_input_count(c%tresca, errmsg)) return
-      if (coulomb_input_unused(c%coulomb, c%friction, errmsg)) return
-      if (tresca_input_unused(c%tresca, c%friction, errmsg)) return
-      if (coulomb_input_validate(c%coulomb, errmsg)) return
-      if (tresca_input_validate(c%tresca, c%friction, errmsg)) return
+      do k = 1, size(c%laws)
+         if (c%laws(k)%input%derive(errmsg)) return
+      end do
+      ! the unused variables, then each law's checks, the later laws first (the order of the
+      ! messages of a deck with several faults)
+      do k = size(c%laws), 1, -1
+         if (c%laws(k)%input%unused(trim(c%friction), errmsg)) return
+      end do
+      do k = size(c%laws), 1, -1
+         if (c%laws(k)%input%validate(trim(c%friction), errmsg)) return
+      end do
       bad = .false.
    end function friction_refused
 
-   !> Copy the obstacles' and laws' values into the names the model reads (contact_cfg_t).
+   !> The index of the chosen law (contact:friction) in c%laws; 0 for a name not registered.
+   integer function chosen_law(c) result(k)
+      type(contact_cfg_t), intent(in) :: c
+      do k = 1, size(c%laws)
+         if (c%laws(k)%input%name() == trim(c%friction)) return
+      end do
+      k = 0
+   end function chosen_law
+
+   !> The index of the chosen shape (contact:obstacle) in c%shapes; 0 for a name not registered.
+   integer function chosen_shape(c) result(k)
+      type(contact_cfg_t), intent(in) :: c
+      do k = 1, size(c%shapes)
+         if (c%shapes(k)%input%name() == trim(c%obstacle)) return
+      end do
+      k = 0
+   end function chosen_shape
+
+   !> Keep the chosen shape's input (c%shape) and the chosen law's input (c%law).
    subroutine contact_cfg_publish(c)
       type(contact_cfg_t), intent(inout) :: c
-      c%obstacle_point = c%plane%obstacle_point
-      c%obstacle_normal = c%plane%obstacle_normal
-      c%obstacle_center = c%circle%obstacle_center
-      c%obstacle_radius = c%circle%obstacle_radius
-      c%obstacle_side = c%circle%obstacle_side
-      c%friction_coefficient = c%coulomb%friction_coefficient
-      c%threshold = c%tresca%threshold
-      c%threshold_abscissa = c%tresca%threshold_abscissa
-      c%threshold_values = c%tresca%threshold_values
-      c%npoints = c%tresca%npoints
-      c%tresca_scope = c%tresca%tresca_scope
+      integer :: k
+      call ensure_laws(c)
+      if (allocated(c%law)) deallocate (c%law)
+      k = chosen_law(c)
+      if (k > 0) allocate (c%law, source=c%laws(k)%input)
+      if (allocated(c%shape)) deallocate (c%shape)
+      k = chosen_shape(c)
+      if (k > 0) allocate (c%shape, source=c%shapes(k)%input)
    end subroutine contact_cfg_publish
 
    !> The group's effective values as deck text (only the variables of the chosen obstacle,
@@ -268,22 +366,20 @@ contains
       type(contact_cfg_t), intent(in) :: c
       character(len=:), allocatable :: text
       character(len=1), parameter :: nl = new_line('a')
+      integer :: k
       text = '&contact'//nl//place_text(c%edge, c%boundary)//range_text(c%xmin, c%xmax, c%ymin, c%ymax)// &
              kv('obstacle', quoted(c%obstacle))
-      if (c%obstacle == 'circle') then
-         text = text//circle_input_echo(c%circle)
-      else
-         text = text//plane_input_echo(c%plane)
-      end if
+      k = chosen_shape(c)
+      if (k > 0) text = text//c%shapes(k)%input%echo()
       if (all(c%origin /= unset)) text = text//kv('origin', reals(c%origin))
       text = text//kv('direction', quoted(c%direction))//kv('multiplier', quoted(c%multiplier))// &
              kv('friction', quoted(c%friction))
-      if (c%friction == 'coulomb') then
-         text = text//coulomb_input_echo(c%coulomb)
-      else if (c%friction == 'tresca') then
-         text = text//tresca_input_echo(c%tresca)
-      end if
-      text = text//tresca_scope_echo(c%tresca)//kv('method', quoted(c%method))
+      k = chosen_law(c)
+      if (k > 0) text = text//c%laws(k)%input%echo()
+      do k = 1, size(c%laws)
+         text = text//c%laws(k)%input%echo_always()
+      end do
+      text = text//kv('method', quoted(c%method))
       if (c%method == 'penalty') text = text//kv('penalty_stiffness', str(c%penalty_stiffness))
       text = text//'/'//nl
    end function contact_cfg_echo

@@ -3,7 +3,8 @@
 !> (SPEC section 4, step 3, as extended in docs/friction.md) finds the normal forces first,
 !> calls limits() once, then projects the trial stick forces onto [-limit_i, limit_i] node by
 !> node. Members: contact2d_friction_tresca (s_i w_i), contact2d_friction_coulomb (mu F_n,i);
-!> the factory contact2d_friction_factory makes one from the deck's contact:friction.
+!> the law's input (contact2d_friction_input, one contact2d_friction_<law>_input per law) makes
+!> one from the deck's contact:friction and its variables.
 module contact2d_friction
    use contact2d_kinds, only: wp
    implicit none
@@ -42,6 +43,9 @@ module contact2d_friction
       !> The law's parameters as name/value pairs, written as attributes of /contact by the
       !> output file (docs/output.md); none for a law whose data are per-node arrays only.
       procedure(friction_law_parameters), deferred :: parameters
+      !> Fill s(i), the law's per-node threshold [MPa] that the output file writes as
+      !> /contact/threshold (docs/output.md): Tresca's s_i; zeros for a law without one.
+      procedure :: node_thresholds => friction_law_node_thresholds
    end type friction_law_t
 
    abstract interface
@@ -80,4 +84,11 @@ contains
       character(len=:), allocatable :: name
       name = trim(this%label)
    end function friction_law_name
+
+   !> No per-node threshold: zeros.
+   pure subroutine friction_law_node_thresholds(this, s)
+      class(friction_law_t), intent(in) :: this
+      real(wp), intent(out) :: s(:)
+      s = 0
+   end subroutine friction_law_node_thresholds
 end module contact2d_friction

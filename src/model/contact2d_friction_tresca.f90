@@ -1,5 +1,7 @@
 !> Tresca friction (SPEC section 3): the limit of node i is s_i w_i, independent of the normal
-!> force; with tresca_scope = 'contact' it is 0 on a node that carries no normal force.
+!> force; with tresca_scope = 'contact' it is 0 on a node that carries no normal force. The law
+!> forms its thresholds s_i itself from the contact nodes' abscissae (uniform, or piecewise
+!> linear in the abscissa, docs/friction.md) and gives them to the writer (/contact/threshold).
 !> A member of the friction-law seam (contact2d_friction, docs/friction.md section 2).
 module contact2d_friction_tresca
    use contact2d_kinds, only: wp
@@ -10,7 +12,8 @@ module contact2d_friction_tresca
 
    !> Nodal Tresca: limit_i = s_i w_i (0 where the tangential dof is prescribed).
    type, extends(friction_law_t) :: tresca_law_t
-      real(wp), allocatable :: bound(:)      !< s_i w_i [N]
+      real(wp), allocatable :: s(:)          !< thresholds s_i per contact node [MPa]
+      real(wp), allocatable :: bound(:)      !< s_i w_i [N] (0 where the tangential dof is prescribed)
       logical :: in_contact_only = .false.   !< tresca_scope = 'contact'
    contains
       procedure :: init => tresca_law_init
@@ -19,20 +22,52 @@ module contact2d_friction_tresca
       procedure :: fn_slopes => tresca_law_fn_slopes
       procedure :: depends_on_fn => tresca_law_no
       procedure :: parameters => tresca_law_parameters
+      procedure :: node_thresholds => tresca_law_node_thresholds
    end type tresca_law_t
 
 contains
 
-   !> bound: s_i w_i per contact node [N]; in_contact_only: tresca_scope = 'contact'.
-   subroutine tresca_law_init(this, bound, in_contact_only)
+   !> abscissa, weight, slides: the contact nodes' abscissae [mm], weights w_i [mm] and whether
+   !> their tangential dof is free; threshold: the uniform s [MPa], used when profile_s is empty;
+   !> profile_s, profile_values: the piecewise-linear s(abscissa) [mm, MPa], held beyond its ends;
+   !> in_contact_only: tresca_scope = 'contact'. Limits s_i w_i (SPEC section 3), none where the
+   !> tangential dof is prescribed (the reaction carries it).
+   subroutine tresca_law_init(this, abscissa, weight, slides, threshold, profile_s, profile_values, in_contact_only)
       class(tresca_law_t), intent(out) :: this
-      real(wp), intent(in) :: bound(:)
+      real(wp), intent(in) :: abscissa(:), weight(:)
+      logical, intent(in) :: slides(:)
+      real(wp), intent(in) :: threshold, profile_s(:), profile_values(:)
       logical, intent(in) :: in_contact_only
+      integer :: i
       this%label = 'tresca'
-      this%bound = bound
+      allocate (this%s(size(abscissa)))
+      if (size(profile_s) > 0) then
+         do i = 1, size(abscissa)
+            this%s(i) = interpolate(profile_s, profile_values, abscissa(i))
+         end do
+      else
+         this%s = threshold
+      end if
+      this%bound = merge(this%s*weight, 0.0_wp, slides)
       this%in_contact_only = in_contact_only
       this%fixed = .not. in_contact_only   ! with tresca_scope = 'all' s_i w_i never change
    end subroutine tresca_law_init
+
+   !> s(x) piecewise linear through (xs_k, ys_k), held constant beyond the ends.
+   pure real(wp) function interpolate(xs, ys, x) result(y)
+      real(wp), intent(in) :: xs(:), ys(:), x
+      integer :: k
+      if (x <= xs(1)) then
+         y = ys(1)
+      else if (x >= xs(size(xs))) then
+         y = ys(size(ys))
+      else
+         do k = 1, size(xs) - 1
+            if (x <= xs(k + 1)) exit
+         end do
+         y = ys(k) + (ys(k + 1) - ys(k))*(x - xs(k))/(xs(k + 1) - xs(k))
+      end if
+   end function interpolate
 
    !> limit_i = s_i w_i, or 0 where node i is not in contact with tresca_scope = 'contact'
    !> (SPEC section 3: judged like the status, per dual cell for P0). F_n itself plays no part.
@@ -74,4 +109,11 @@ contains
       real(wp), allocatable, intent(out) :: values(:)
       allocate (names(0), values(0))
    end subroutine tresca_law_parameters
+
+   !> The thresholds s_i [MPa] (written as /contact/threshold).
+   pure subroutine tresca_law_node_thresholds(this, s)
+      class(tresca_law_t), intent(in) :: this
+      real(wp), intent(out) :: s(:)
+      s = this%s
+   end subroutine tresca_law_node_thresholds
 end module contact2d_friction_tresca

@@ -13,7 +13,6 @@ module contact2d_model
    use contact2d_mass_scaling, only: mass_scale
    use contact2d_loading, only: loading_t
    use contact2d_contact, only: contact_t, contact_config_t
-   use contact2d_obstacle_factory, only: obstacle_create
    use contact2d_gmsh, only: gmsh_read
    use contact2d_explicit, only: damping_none, damping_given, damping_auto
    use contact2d_initial, only: initial_velocity_warning
@@ -155,7 +154,7 @@ contains
       subroutine build_contact()
          integer, allocatable :: nodes(:)
          type(contact_config_t) :: cfg
-         character(len=:), allocatable :: obstacle
+         character(len=:), allocatable :: obstacle, warning
          integer :: g
          real(wp) :: d1, d2
          associate (c => deck%contact)
@@ -184,34 +183,20 @@ contains
                call model%mesh%select_nodes(edge_id(c%edge), [c%xmin, c%xmax, c%ymin, c%ymax], nodes)
                if (c%direction == 'cw') nodes = nodes(size(nodes):1:-1)
             end if
-            call obstacle_create(c%obstacle, c%obstacle_point, c%obstacle_normal, c%obstacle_center, &
-                                 c%obstacle_radius, c%obstacle_side, cfg%obstacle, stat, errmsg)
-            if (stat /= 0) then
-               errmsg = deck%path//': '//errmsg
-               return
-            end if
+            call c%shape%make(cfg%obstacle)
             cfg%origin = c%origin
             cfg%multiplier = c%multiplier
-            cfg%friction = c%friction
-            cfg%friction_coefficient = c%friction_coefficient
-            cfg%threshold = c%threshold
-            cfg%profile_s = c%threshold_abscissa(1:c%npoints)
-            cfg%profile_values = c%threshold_values(1:c%npoints)
-            cfg%tresca_scope = c%tresca_scope
+            if (allocated(c%law)) allocate (cfg%friction, source=c%law)
             cfg%method = c%method
             cfg%penalty_stiffness = c%penalty_stiffness
             cfg%file_id = model%mesh%file_id([(g, g=1, model%mesh%nnode)])
             obstacle = cfg%obstacle%describe()
             call model%contact%init(cfg, nodes, model%mesh%x, model%load%free, model%stiff%mass, &
                                     model%warnings, stat, errmsg)
-            ! a plane whose normal nu (from the obstacle into the body) points along the built-in
-            ! edge's outward normal: no node can ever touch, warn
-            if (stat == 0 .and. len_trim(c%boundary) == 0 .and. c%obstacle == 'plane') then
-               if (dot_product(c%obstacle_normal, outward(:, edge_id(c%edge))) > 0) then
-                  call model%warnings%add('contact:obstacle_normal = ('//str(c%obstacle_normal(1))//', '// &
-                     str(c%obstacle_normal(2))//") points away from the body at edge '"//trim(c%edge)// &
-                     "' (it must point from the obstacle into the body): no node can touch the obstacle")
-               end if
+            ! an obstacle that the built-in edge can never touch (the shape's own test): warn
+            if (stat == 0 .and. len_trim(c%boundary) == 0) then
+               warning = c%shape%edge_warning(trim(c%edge), outward(:, edge_id(c%edge)))
+               if (len(warning) > 0) call model%warnings%add(warning)
             end if
          end associate
          if (stat /= 0) then

@@ -57,7 +57,6 @@ module contact2d_static
       integer :: nt = 0                    !< tangential unknowns
       integer :: m = 0                     !< nc + nt
       logical :: p0 = .false.
-      logical :: scope_contact = .false.   !< tresca_scope = 'contact'
       !> the law's limits are slope_i F_n,i (law%linear_in_fn: Coulomb): fixed-set solves and
       !> the semismooth Newton step on the friction problem itself
       logical :: linear = .false.
@@ -67,7 +66,9 @@ module contact2d_static
       integer, allocatable :: cnode(:)     !< contact index of each unknown (m)
       real(wp), allocatable :: bdir(:, :)  !< unknown direction (n or t) (2, m)
       real(wp), allocatable :: a(:, :)     !< condensed operator A (m, m) [N/mm]
-      real(wp), allocatable :: limit(:)    !< s_i w_i per tangential unknown (nt) [N]
+      !> the law's limits with every node in contact at zero normal force, per tangential unknown
+      !> (nt) [N]: a fixed law's limits (Tresca s_i w_i), the start of the fixed point otherwise
+      real(wp), allocatable :: limit(:)
       type(cholmod_t) :: chol
       ! state
       real(wp), allocatable :: u(:, :)     !< displacement (2, nnode) [mm]
@@ -207,6 +208,7 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       integer :: k, c, i, n, nint, ncd
       logical, allocatable :: is_contact(:)
+      real(wp), allocatable :: zero(:), closed(:), limnode(:)
 
       stat = 1
       errmsg = ''
@@ -233,7 +235,6 @@ contains
          if (ct%active) then
             this%nc = ct%nc
             this%p0 = ct%multiplier_name() == 'P0'
-            this%scope_contact = ct%friction_in_contact_only
             if (ct%friction) then
                this%linear = ct%law%linear_in_fn()
                this%law_fp = .not. ct%law%fixed
@@ -257,6 +258,13 @@ contains
          this%m = this%nc + this%nt
          ! the unknowns: normal of every contact node, then tangential where both dofs are free
          allocate (this%cnode(this%m), this%bdir(2, this%m), this%limit(this%nt))
+         ! the law's own limits (friction_law_t%limits, docs/friction.md section 2) with every
+         ! node closed and no normal force: what a fixed law gives at every step
+         allocate (zero(this%nc), closed(this%nc), limnode(this%nc))
+         zero = 0
+         closed = 1
+         limnode = 0
+         if (ct%active .and. ct%friction) call ct%law%limits(zero, closed, limnode)
          k = this%nc
          do i = 1, this%nc
             this%cnode(i) = i
@@ -265,7 +273,7 @@ contains
                k = k + 1
                this%cnode(k) = i
                this%bdir(:, k) = ct%tangent(:, i)
-               this%limit(k - this%nc) = ct%limit(i)
+               this%limit(k - this%nc) = limnode(i)
             end if
          end do
          if (this%m /= this%ncdof) then
