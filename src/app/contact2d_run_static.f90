@@ -102,8 +102,6 @@ contains
       type(static_state_t), intent(inout), target :: run
       integer :: stat
       character(len=:), allocatable :: errmsg
-      call supported(deck, stat, errmsg)
-      if (stat /= 0) call refuse(errmsg)
       call run%engine%setup(model, stat, errmsg)
       if (stat /= 0) then
          call run%engine%free()
@@ -432,8 +430,6 @@ contains
 
       dist = huge(1.0_wp)
       converged = .false.
-      call supported(deck, stat, errmsg)
-      if (stat /= 0) return
       call st%setup(model, stat, errmsg)
       if (stat /= 0) return
       call increments(st, deck, model, .false., res)
@@ -456,19 +452,4 @@ contains
       call st%free()
    end subroutine static_distance
 
-   !> The friction laws the static engine solves: frictionless, Tresca and Coulomb
-   !> (docs/static.md). Another law is refused rather than solved as something else.
-   subroutine supported(deck, stat, errmsg)
-      type(deck_t), intent(in) :: deck
-      integer, intent(out) :: stat
-      character(len=:), allocatable, intent(out) :: errmsg
-      stat = 0
-      errmsg = ''
-      if (.not. deck%contact%present) return
-      if (.not. any(trim(deck%contact%friction) == [character(len=12) :: 'frictionless', 'tresca', 'coulomb'])) then
-         stat = 1
-         errmsg = "the static engine solves frictionless, Tresca and Coulomb contact only; contact:friction = '"// &
-                  trim(deck%contact%friction)//"' is not supported with solver:method = 'static' or compare_static"
-      end if
-   end subroutine supported
 end module contact2d_run_static
