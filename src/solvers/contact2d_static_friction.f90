@@ -15,11 +15,7 @@ contains
    !> The friction law's limits (docs/friction.md section 2) of the tangential unknowns for the
    !> nodal normal forces fn and the P0 cell multipliers mu (the contact measure: fn for P1, mu
    !> for P0, as contact2d_contact passes it).
-   module subroutine law_limits(this, model, fn, mu, limk)
-      type(static_t), intent(in) :: this
-      type(model_t), intent(in) :: model
-      real(wp), intent(in) :: fn(:), mu(:)
-      real(wp), intent(out) :: limk(:)
+   module procedure law_limits
       real(wp) :: limnode(this%nc)
       integer :: k
       if (.not. this%law_fp) then
@@ -34,12 +30,10 @@ contains
       do k = 1, this%nt
          limk(k) = limnode(this%cnode(this%nc + k))
       end do
-   end subroutine law_limits
+   end procedure law_limits
 
    !> Nodal forces from lambda: F_n = T lambda_n (mu for P0), F_t per node.
-   module subroutine nodal_forces(this, model)
-      type(static_t), intent(inout) :: this
-      type(model_t), intent(in) :: model
+   module procedure nodal_forces
       integer :: r
       if (this%p0) then
          this%mu = this%lambda(1:this%nc)
@@ -52,13 +46,10 @@ contains
       do r = this%nc + 1, this%m
          this%ft(this%cnode(r)) = this%lambda(r)
       end do
-   end subroutine nodal_forces
+   end procedure nodal_forces
 
    !> y = D x for the contact chain (D symmetric tridiagonal, SPEC section 3).
-   module subroutine d_apply(model, x, y)
-      type(model_t), intent(in) :: model
-      real(wp), intent(in) :: x(:)
-      real(wp), intent(out) :: y(:)
+   module procedure d_apply
       integer :: i, nc
       nc = size(x)
       y = model%contact%dd*x
@@ -66,7 +57,7 @@ contains
          y(i) = y(i) + model%contact%dl(i)*x(i + 1)
          y(i + 1) = y(i + 1) + model%contact%dl(i)*x(i)
       end do
-   end subroutine d_apply
+   end procedure d_apply
 
    !> The friction limits implied by the multipliers lam (normal part first): law_limits on the
    !> nodal normal forces (P0: F_n = D^T mu_n) and the normal multipliers themselves.
@@ -155,14 +146,7 @@ contains
    !> sets, the exact fixed-set solution (linear_sets_solve), then the sets it implies with the
    !> limits mu F_n of its own forces; until the sets repeat (ok: every condition holds) or an
    !> earlier set comes back or max_iter is reached (not ok; lambda unchanged).
-   module subroutine linear_newton(this, model, cvec, nit, ok, stat, errmsg)
-      type(static_t), intent(inout) :: this
-      type(model_t), intent(in) :: model
-      real(wp), intent(in) :: cvec(:)
-      integer, intent(out) :: nit
-      logical, intent(out) :: ok
-      integer, intent(out) :: stat
-      character(len=:), allocatable, intent(out) :: errmsg
+   module procedure linear_newton
       real(wp) :: lam(this%m), y(this%m), limk(this%nt)
       integer :: new_state(this%m), info, it, j
       integer, allocatable :: hist(:, :)
@@ -192,18 +176,12 @@ contains
          end do
          this%state = new_state
       end do
-   end subroutine linear_newton
+   end procedure linear_newton
 
    !> The exact solution for the current sets with limits linear in F_n (linear_sets_solve on A (y - y0) +
    !> lambda = 0), kept (ok) only if the sets it implies are the same, the limits being
    !> mu F_n of its own forces: then every condition of the condensed problem holds.
-   module subroutine linear_exact(this, model, cvec, ok, stat, errmsg)
-      type(static_t), intent(inout) :: this
-      type(model_t), intent(in) :: model
-      real(wp), intent(in) :: cvec(:)
-      logical, intent(out) :: ok
-      integer, intent(out) :: stat
-      character(len=:), allocatable, intent(out) :: errmsg
+   module procedure linear_exact
       real(wp) :: lam(this%m), y(this%m), limk(this%nt)
       integer :: check(this%m), info
       stat = 0
@@ -218,5 +196,5 @@ contains
          this%lambda = lam
          call nodal_forces(this, model)
       end if
-   end subroutine linear_exact
+   end procedure linear_exact
 end submodule contact2d_static_friction
