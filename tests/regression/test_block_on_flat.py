@@ -15,7 +15,8 @@ inputs/block_on_flat_coulomb_<m>.nml: the same block with Coulomb friction mu = 
      1e-9 (energy norm) of the explicit end state (both solve the same discrete problem; the
      load is proportional and the slip monotone at these levels); total F_n = p L to 1e-10 and
      total F_t = 0 to 1e-12 p L (odd about x = 0.5 by symmetry); --static: KKT within 1e-12,
-     the Coulomb cone at every node, total F_n = p L and total F_t = 0 to 1e-12.
+     the Coulomb cone at every node, total F_n = p L and total F_t = 0 to 1e-12; 10 increments end
+     where one does to 1e-12 of max |u| (proportional loading).
 The frictionless block without its pin (bad_decks/block_no_pin.nml) is a mechanism:
   4. explicit: no load drives the x translation, so it runs with exactly one warning line naming
      it; the stress within 1e-8 p. (Its refusals by --static, compare_static and a driving
@@ -104,6 +105,16 @@ def coulomb(t, mult):
             t.check_close(st, "total normal force = p L", P * L, float(fn.sum()), rtol=1e-12, reason="round-off")
             t.check_close(st, "total tangential force = 0 (symmetry)", 0.0, float(ft.sum()), atol=1e-12 * P * L,
                           reason="round-off")
+            u1 = h5["final/displacement"][()]
+        # proportional loading, monotone slip: ten increments end where one does (each increment
+        # starts its proximal passes from the last one's state)
+        ten = t.run(deck, "--static", "--set", "mesh:level=%d" % level, "--set", "solver:static_increments=10",
+                    name="coulomb_static10_level%d" % level)
+        t.expect_exit(ten, 0)
+        with ten.open() as h5:
+            t.check_equal(ten, "converged", 1, int(h5.attrs["converged"]))
+            u10 = h5["final/displacement"][()]
+        t.check_le(ten, "max |u(N=10) - u(N=1)| / max |u|", float(np.abs(u10 - u1).max() / np.abs(u1).max()), 1e-12)
 
 
 def mechanism(t, mult):
