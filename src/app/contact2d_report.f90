@@ -11,7 +11,7 @@ module contact2d_report
    use contact2d_state, only: state_t
    use contact2d_contact, only: contact_t
    use contact2d_threads, only: thread_tuner_t
-   use contact2d_static, only: static_t
+   use contact2d_static, only: static_t, prox_eps
    use contact2d_kkt, only: kkt_names
    implicit none
    private
@@ -255,6 +255,9 @@ contains
       end if
       write (output_unit, '(a)') ' increments          '//str(state%step)//asked//' ('//str(st%iterations)// &
          ' active-set iterations, '//str(st%outer_iterations)//' threshold passes)'
+      ! a body held by contact alone (docs/static.md "Bodies held by contact")
+      if (st%prox_iterations > 0) write (output_unit, '(a)') '                     '//str(st%prox_iterations)// &
+         ' proximal passes (rigid motions held by contact alone, K + '//str(prox_eps)//' diag(K))'
       if (splits > 0) write (output_unit, '(a)') '                     '//str(splits)//' halving(s): '// &
          'an increment that did not settle was taken again in halves (solver:static_splits)'
       write (output_unit, '(a)') ' converged           '//trim(merge('yes', 'NO ', state%converged))// &

@@ -548,10 +548,8 @@ contains
          end if
          last_stage = max(last_stage, deck%traction(i)%times(deck%traction(i)%nstage))
       end do
-      if (size(deck%dirichlet) == 0) then
-         errmsg = 'no &dirichlet group: the body needs supports (a rigid-body motion would be free)'
-         return
-      end if
+      ! no &dirichlet is fine where contact holds the body: the model's rigid-motion check
+      ! (contact2d_rigid, docs/static.md "Bodies held by contact") refuses a free mechanism
       if (deck%solver%t_end == 0) then
          deck%solver%t_end = 10*last_stage
       else if (deck%solver%t_end < last_stage) then

@@ -18,6 +18,7 @@ module contact2d_model
    use contact2d_initial, only: initial_velocity_warning
    use contact2d_body, only: body_t, body_init
    use contact2d_pair, only: contact_pair_t, pair_init
+   use contact2d_rigid, only: rigid_t, rigid_free_motions, rigid_describe, rigid_drive
    use contact2d_timestep, only: timestep_critical, timestep_choose, timestep_power, timestep_guarded
    implicit none
    private
@@ -45,6 +46,9 @@ module contact2d_model
       real(wp) :: body_mass = 0      !< physical mass of the body [t]
       integer :: scaled_nodes = 0    !< nodes that got mass
       type(messages_t) :: warnings
+      !> the body's rigid motions that no support stops (contact2d_rigid): nfree > 0 only for a
+      !> body held by contact alone; the static engine regularises them (docs/static.md)
+      type(rigid_t) :: unsupported
    end type model_t
 
 contains
@@ -127,6 +131,8 @@ contains
          call build_contact()
          if (stat /= 0) return
       end if
+      call rigid_check()
+      if (stat /= 0) return
 
       ! the time step (contact2d_timestep): the critical step, dt from the deck, and for the
       ! explicit engine the power-iteration estimate (solver:dt_limit = 'power')
@@ -210,6 +216,82 @@ contains
             call pair_init(model%pairs(1), 1, model%contact%node, obstacle)
          end if
       end subroutine build_contact
+
+      !> The body's rigid motions (docs/static.md "Bodies held by contact"): those its supports
+      !> leave free are kept (model%unsupported); one that contact cannot stop either (no normal,
+      !> nor a tangent where the law carries friction, does work on it) is a mechanism: refused
+      !> when a load drives it or the static engine runs (K u = f has no unique solution), a
+      !> warning for the explicit engine otherwise (nothing moves the body along it).
+      subroutine rigid_check()
+         type(rigid_t) :: mech, mech_friction
+         integer, allocatable :: nodes(:), cnode(:)
+         real(wp), allocatable :: cn(:, :), ctan(:, :), unit_fn(:), lim(:)
+         logical, allocatable :: used(:), carries(:)
+         real(wp) :: none(2, 0)
+         character(len=:), allocatable :: what, remedy
+         logical :: drives
+         integer :: k
+
+         allocate (used(model%mesh%nnode))
+         used = .false.
+         used(reshape(model%mesh%conn(:, model%bodies(1)%elements), [4*size(model%bodies(1)%elements)])) = .true.
+         nodes = pack([(k, k=1, model%mesh%nnode)], used)
+         ! the supports alone
+         call rigid_free_motions(model%mesh%x, nodes, model%load%free, [integer ::], none, none, [logical ::], &
+                                 model%unsupported, stat)
+         if (stat /= 0) then
+            errmsg = deck%path//': LAPACK dsyev failed on the rigid motions of the body'
+            return
+         end if
+         if (model%unsupported%nfree == 0) return
+         ! the supports and contact: normals, and tangents where the law carries a tangential
+         ! force under a unit normal force
+         if (model%contact%active) then
+            cnode = model%contact%node
+            cn = model%contact%normal
+            ctan = model%contact%tangent
+            allocate (carries(size(cnode)), unit_fn(size(cnode)), lim(size(cnode)))
+            carries = .false.
+            if (model%contact%friction) then
+               unit_fn = 1
+               call model%contact%law%limits(unit_fn, unit_fn, lim)
+               carries = lim > 0
+            end if
+         else
+            allocate (cnode(0), cn(2, 0), ctan(2, 0), carries(0))
+         end if
+         call rigid_free_motions(model%mesh%x, nodes, model%load%free, cnode, cn, ctan, carries, mech, stat)
+         if (stat /= 0) then
+            errmsg = deck%path//': LAPACK dsyev failed on the rigid motions of the body'
+            return
+         end if
+         if (mech%nfree == 0) return
+         ! would friction everywhere stop the first motion? then say so
+         call rigid_free_motions(model%mesh%x, nodes, model%load%free, cnode, cn, ctan, [(.true., k=1, size(cnode))], &
+                                 mech_friction, stat)
+         remedy = 'add a &dirichlet'
+         if (stat == 0 .and. size(cnode) > 0) then
+            if (mech_friction%nfree == 0) then
+               remedy = remedy//' or friction'
+            else if (norm2(matmul(transpose(mech_friction%motion), mech%motion(:, 1))) < 1 - 1.0e-6_wp) then
+               remedy = remedy//' or friction'
+            end if
+         end if
+         stat = 0
+         what = "body '"//model%bodies(1)%name//"' is free to "//rigid_describe(mech, mech%motion(:, 1))
+         drives = .false.
+         do k = 1, mech%nfree
+            drives = drives .or. rigid_drive(mech, mech%motion(:, k), model%mesh%x, model%load%tnode, &
+                                             model%load%tcomp, model%load%tcurve, model%load%tweight)
+         end do
+         if (drives .or. deck%solver%method == 'static' .or. deck%solver%compare_static) then
+            stat = 1
+            errmsg = deck%path//': '//what//': no support and no contact stops it; '//remedy
+         else
+            call model%warnings%add(what//' (no support and no contact stops it); no load drives it, so the '// &
+                                    'explicit engine runs it, the static engine would refuse it; '//remedy)
+         end if
+      end subroutine rigid_check
 
       subroutine add_edge_load(cfg, group, k)
          type(edge_load_cfg_t), intent(in) :: cfg

@@ -49,8 +49,11 @@ def k_times(coords, conn, u, young, poisson):
     return f
 
 
-def residuals(h5, u_prev=None):
-    """The four relative KKT residuals of the file's final state, as a dict, plus details."""
+def residuals(h5, u_prev=None, fext=None):
+    """The four relative KKT residuals of the file's final state, as a dict, plus details.
+
+    fext: the nodal external forces (nnode, 2) where the scene has tractions (the file does not
+    store them; the caller forms them from its deck), else none."""
     deck = c2dtest.parse_effective_deck(c2dtest.attr_str(h5.attrs["effective_deck"]))
     young, poisson = float(deck["material"]["young"]), float(deck["material"]["poisson"])
     contact = deck["contact"]
@@ -82,13 +85,15 @@ def residuals(h5, u_prev=None):
            "negative_multiplier": max(-lam.min(), 0.0) / lmax,
            "complementarity_product": np.abs(lam * e).max() / (lmax * umax)}
     res["complementarity"] = max(res["negative_multiplier"], res["complementarity_product"])
-    # equilibrium on the free dofs: K u - F_c = 0 (these scenes have no tractions)
+    # equilibrium on the free dofs: K u - F_c - f_ext = 0
     f = k_times(coords, conn, u, young, poisson)
     fc = np.zeros_like(u)
     fc[nodes] = -fn[:, None] * normal - ft[:, None] * tangent
-    r = f - fc
+    if fext is None:
+        fext = np.zeros_like(u)
+    r = f - fc - fext
     free = h5["final/reaction"][()] == 0
-    scale = max(np.abs(r[~free]).max(), np.abs(fc).max())
+    scale = max(np.abs(r[~free]).max() if (~free).any() else 0.0, np.abs(fc).max(), np.abs(fext).max())
     res["equilibrium"] = np.abs(r[free]).max() / scale
     # the friction limit of each node for the final forces
     law = str(contact.get("friction", "frictionless")).lower()
@@ -113,9 +118,9 @@ def residuals(h5, u_prev=None):
     return res
 
 
-def check(t, run, h5, tol, u_prev=None, attributes=True):
+def check(t, run, h5, tol, u_prev=None, attributes=True, fext=None):
     """check_le every residual of residuals() against tol; also the file's own kkt_* attributes."""
-    res = residuals(h5, u_prev)
+    res = residuals(h5, u_prev, fext)
     t.check_le(run, "normal feasibility max(d, 0) / max|u| (P0: per dual cell)", res["normal_feasibility"], tol)
     t.check_le(run, "negative multiplier / max", res["negative_multiplier"], tol)
     t.check_le(run, "complementarity max|lambda d| / (max lambda max|u|)", res["complementarity_product"], tol)
@@ -124,7 +129,7 @@ def check(t, run, h5, tol, u_prev=None, attributes=True):
         t.check_le(run, "friction: max|limit |psi| - F_t psi| / (max limit max|u|)", res["friction_slip"], tol)
     else:
         t.check_le(run, "no friction limit: max |F_t|", res["friction_feasibility"], 0.0)
-    t.check_le(run, "equilibrium max|K u - F_c| on free dofs / max(reaction, F_c)", res["equilibrium"], tol)
+    t.check_le(run, "equilibrium max|K u - F_c - f_ext| on free dofs / max(reaction, F_c, f_ext)", res["equilibrium"], tol)
     if attributes:
         for name in NAMES:
             t.check_le(run, "attribute kkt_" + name, float(h5.attrs["kkt_" + name]), tol)

@@ -171,6 +171,20 @@ CASES = [
      r"or free that node$"),
     ("dynamic_without_t_end", "inputs/impact_bar_p1.nml", ["--set", "solver:t_end=0"],
      r"solver:t_end is required for a dynamic run"),
+    # a mechanism (docs/static.md "Bodies held by contact"): the frictionless block without its
+    # pin is free to slide along x; the static engine has no unique solution, and a load along x
+    # drives it in the explicit engine too
+    ("mechanism_static", "bad_decks/block_no_pin.nml", ["--static"],
+     r"block_no_pin\.nml: body 'body' is free to translate along x: no support and no contact stops it; "
+     r"add a &dirichlet or friction$"),
+    ("mechanism_compare_static", "bad_decks/block_no_pin.nml", ["--set", "solver:compare_static=.true."],
+     r"body 'body' is free to translate along x: no support and no contact stops it; add a &dirichlet or friction$"),
+    ("mechanism_driven", "bad_decks/block_no_pin.nml", ["--set", "traction#1:component='tangential'"],
+     r"body 'body' is free to translate along x: no support and no contact stops it; add a &dirichlet or friction$"),
+    ("mechanism_no_contact", "inputs/uniaxial_compression.nml",
+     ["--static", "--set", "dirichlet#1:component='x'", "--set", "dirichlet#3:component='x'",
+      "--set", "dirichlet#3:values=0"],
+     r"body 'body' is free to translate along y: no support and no contact stops it; add a &dirichlet$"),
 ]
 
 # Bytes of the output file that already exists in the 'existing_output' case (not HDF5 on
