@@ -7,7 +7,7 @@ module contact2d_model
    use contact2d_checks, only: check_positive
    use contact2d_messages, only: messages_t
    use contact2d_deck, only: deck_t, edge_load_cfg_t, edge_id, unset
-   use contact2d_mesh, only: mesh_t
+   use contact2d_mesh, only: mesh_t, node_elements
    use contact2d_material, only: material_t, material_init
    use contact2d_stiffness, only: stiffness_t
    use contact2d_mass_scaling, only: mass_scale
@@ -27,8 +27,10 @@ module contact2d_model
    !> from then on. What changes during a run is in the state (contact2d_state).
    type :: model_t
       type(mesh_t) :: mesh
-      !> the bodies (contact2d_body): one today, the whole mesh
+      !> the bodies (contact2d_body): the deck's &body groups, or one, the whole mesh
       type(body_t), allocatable :: bodies(:)
+      !> the body of each element (nel), an index into bodies
+      integer, allocatable :: body_of(:)
       !> the contact pairs (contact2d_pair): none, or one (the deck's &contact) today
       type(contact_pair_t), allocatable :: pairs(:)
       type(stiffness_t) :: stiff
@@ -84,14 +86,24 @@ contains
          ny = deck%mesh%ny*2**deck%mesh%level
          call model%mesh%init_rectangle(deck%mesh%lx, deck%mesh%ly, nx, ny)
       end if
-      ! the one body: every element, the deck's material; the element matrices and masses are
-      ! formed with the body's material (contact2d_stiffness)
-      call material_init(material, deck%material%young, deck%material%poisson, &
-                         deck%material%density, stat, errmsg)
-      if (stat /= 0) return
-      allocate (model%bodies(1))
-      call body_init(model%bodies(1), 'body', [(i, i=1, model%mesh%nel)], material)
-      call model%stiff%init(model%mesh, model%bodies(1)%material, stat, errmsg)
+      if (size(deck%body) == 0) then
+         ! the one body: every element, the deck's material; the element matrices and masses are
+         ! formed with the body's material (contact2d_stiffness)
+         call material_init(material, deck%material%young, deck%material%poisson, &
+                            deck%material%density, stat, errmsg)
+         if (stat /= 0) return
+         allocate (model%bodies(1))
+         call body_init(model%bodies(1), 'body', [(i, i=1, model%mesh%nel)], material)
+         call model%stiff%init(model%mesh, model%bodies(1)%material, stat, errmsg)
+         allocate (model%body_of(model%mesh%nel))
+         model%body_of = 1
+      else
+         ! the deck's bodies: each the elements of one physical surface, every element in exactly
+         ! one body; the element matrices and masses of each element with its body's material
+         call build_bodies()
+         if (stat /= 0) return
+         call model%stiff%init_bodies(model%mesh, model%bodies%material, model%body_of, stat, errmsg)
+      end if
       if (stat /= 0) return
       allocate (model%pairs(0))
       ! derived quantities checked before use, naming what they come from (contact2d_checks)
@@ -151,11 +163,67 @@ contains
       stat = 0
       errmsg = ''
    contains
+      !> model%bodies and model%body_of from the deck's &body groups; refused: a surface the mesh
+      !> lacks (its names listed), an element in two bodies, an element in none.
+      subroutine build_bodies()
+         integer :: b, k, e, sidx
+         type(material_t) :: mat
+         character(len=:), allocatable :: where
+         allocate (model%bodies(size(deck%body)), model%body_of(model%mesh%nel))
+         model%body_of = 0
+         do b = 1, size(deck%body)
+            associate (c => deck%body(b))
+               where = deck%path//':'//str(c%line)//": &body (#"//str(b)//") '"//trim(c%name)//"': "
+               sidx = model%mesh%surface_index(c%surface)
+               if (sidx == 0) then
+                  stat = 1
+                  errmsg = where//"surface = '"//trim(c%surface)//"' is not a physical surface of "// &
+                           trim(deck%mesh%file)//'; it has '//model%mesh%surface_list()
+                  return
+               end if
+               do k = model%mesh%sstart(sidx), model%mesh%sstart(sidx + 1) - 1
+                  e = model%mesh%selem(k)
+                  if (model%body_of(e) /= 0 .and. model%body_of(e) /= b) then
+                     stat = 1
+                     errmsg = where//'element '//str(model%mesh%id_of(e))//' of surface '''//trim(c%surface)// &
+                              ''' is also in body '''//trim(deck%body(model%body_of(e))%name)// &
+                              '''; an element belongs to one body'
+                     return
+                  end if
+                  model%body_of(e) = b
+               end do
+               call material_init(mat, c%young, c%poisson, c%density, stat, errmsg)
+               if (stat /= 0) then
+                  errmsg = where//errmsg
+                  return
+               end if
+               call body_init(model%bodies(b), trim(c%name), pack([(e, e=1, model%mesh%nel)], model%body_of == b), mat)
+            end associate
+         end do
+         e = findloc(model%body_of, 0, dim=1)
+         if (e > 0) then
+            stat = 1
+            errmsg = deck%path//': element '//str(model%mesh%id_of(e))//' of '//trim(deck%mesh%file)//' is in no body ('// &
+                     str(count(model%body_of == 0))//' element(s) are): give every element a &body (surfaces: '// &
+                     model%mesh%surface_list()//')'
+            return
+         end if
+         do b = 1, size(model%bodies)
+            if (size(model%bodies(b)%elements) == 0) then
+               stat = 1
+               errmsg = deck%path//':'//str(deck%body(b)%line)//": &body (#"//str(b)//") '"//trim(deck%body(b)%name)// &
+                        "': surface = '"//trim(deck%body(b)%surface)//"' holds no quadrilateral"
+               return
+            end if
+         end do
+         stat = 0
+      end subroutine build_bodies
+
       subroutine build_contact()
          integer, allocatable :: nodes(:)
          type(contact_config_t) :: cfg
          character(len=:), allocatable :: obstacle, warning
-         integer :: g
+         integer :: g, slave
          real(wp) :: d1, d2
          associate (c => deck%contact)
             if (len_trim(c%boundary) > 0) then
@@ -183,6 +251,10 @@ contains
                call model%mesh%select_nodes(edge_id(c%edge), [c%xmin, c%xmax, c%ymin, c%ymax], nodes)
                if (c%direction == 'cw') nodes = nodes(size(nodes):1:-1)
             end if
+            ! the slave body: every edge of Gamma_c in one body (contact between bodies and
+            ! several &contact groups come later; docs/deck.md &body)
+            call chain_body(nodes, slave)
+            if (stat /= 0) return
             call c%shape%make(cfg%obstacle)
             cfg%origin = c%origin
             cfg%multiplier = c%multiplier
@@ -207,9 +279,39 @@ contains
          if (model%contact%active) then
             deallocate (model%pairs)
             allocate (model%pairs(1))
-            call pair_init(model%pairs(1), 1, model%contact%node, obstacle)
+            call pair_init(model%pairs(1), slave, model%contact%node, obstacle)
          end if
       end subroutine build_contact
+
+      !> The body of the chain `nodes` (consecutive nodes are the ends of one element edge): the
+      !> body of the elements holding its edges; stat = 1 when they are of several bodies.
+      subroutine chain_body(nodes, slave)
+         integer, intent(in) :: nodes(:)
+         integer, intent(out) :: slave
+         integer, allocatable :: adj_start(:), adj_elem(:)
+         integer :: i, k, e, b
+         slave = 1
+         stat = 0
+         if (size(model%bodies) == 1) return
+         call node_elements(model%mesh%conn, model%mesh%nnode, adj_start, adj_elem)
+         slave = 0
+         do i = 1, size(nodes) - 1
+            do k = adj_start(nodes(i)), adj_start(nodes(i) + 1) - 1
+               e = adj_elem(k)
+               if (.not. any(model%mesh%conn(:, e) == nodes(i + 1))) cycle
+               b = model%body_of(e)
+               if (slave == 0) slave = b
+               if (b /= slave) then
+                  stat = 1
+                  errmsg = deck%path//": contact:boundary = '"//trim(deck%contact%boundary)//"' lies on bodies '"// &
+                           model%bodies(slave)%name//"' and '"//model%bodies(b)%name// &
+                           "'; a contact boundary lies on one body"
+                  return
+               end if
+            end do
+         end do
+         if (slave == 0) slave = model%body_of(1)
+      end subroutine chain_body
 
       subroutine add_edge_load(cfg, group, k)
          type(edge_load_cfg_t), intent(in) :: cfg
