@@ -163,6 +163,8 @@ contains
             call this%file%dataset(g, 'threshold', c%threshold, 'MPa')
             ! per-node outward normal of the body, fixed at set-up (docs/geometry.md)
             call this%file%dataset(g, 'normal', c%normal, '1')
+            ! the body whose boundary Gamma_c is (1-based, as /mesh/body)
+            if (size(model%pairs) > 0) call this%file%attr(g, 'slave_body', model%pairs(1)%slave_body)
             if (c%friction) then
                call this%file%attr(g, 'friction', c%law%name())
                ! the law's own parameters (Coulomb: friction_coefficient), whatever the law

@@ -8,7 +8,8 @@ a two-surface mesh), a body with no material value (no &material to default from
 body name, &body with the built-in rectangle (no surfaces), and a &contact boundary that lies
 on two bodies (docs/deck.md, "&body"). Each runs in an empty directory with -o out.h5: exit 1,
 exactly one stderr line 'contact2d: error: ...' matching the case's pattern, no out.h5, no
-out.xmf. The valid deck itself runs (exit 0), --static too.
+out.xmf. The valid deck itself runs (exit 0), --static too, and its contact pair records its
+slave body (/contact attribute slave_body: 1 for 'bottom_left', 2 for 'bottom_right').
 """
 import os
 import re
@@ -54,9 +55,14 @@ BUILT_IN = """&mesh lx = 1.0, ly = 1.0, nx = 2, ny = 2 /
 def body(t):
     deck = os.path.join(t.here, "geometry", "bodies.nml")
     geo = os.path.join(t.here, "geometry", "two_blocks.geo")
-    for name, args in (("valid", []), ("valid_static", ["--static"])):
+    # the contact pair records its slave body: /contact@slave_body, 1-based as /mesh/body
+    for name, args, slave in (("valid", [], 1), ("valid_static", ["--static"], 1),
+                              ("valid_right", ["--set", "contact:boundary='bottom_right'"], 2)):
         ok = t.run(deck, *args, name=name)
         t.expect_exit(ok, 0)
+        with ok.open() as f:
+            t.check_equal(ok, "/contact slave_body (the body of Gamma_c)", slave,
+                          int(f["contact"].attrs.get("slave_body", 0)))
     cases = [(name, deck, args, pattern) for name, args, pattern in CASES]
     for name, text, pattern in (
             ("element_in_no_body", ONE_BODY % geo,

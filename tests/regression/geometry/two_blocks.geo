@@ -1,7 +1,7 @@
 // Two unit squares of 3 x 3 quads side by side, bonded along x = 1 (they share its nodes), for
 // the &body cases of tests/regression/test_bodies_refusals.py: Physical Surfaces "left", "right"
 // and "both" (the two, overlapping the others); the curve "bottom" runs under both squares,
-// "bottom_left" under the left one only.
+// "bottom_left" and "bottom_right" under one each.
 Point(1) = {0, 0, 0, 0.3};
 Point(2) = {1, 0, 0, 0.3};
 Point(3) = {2, 0, 0, 0.3};
@@ -21,6 +21,7 @@ Curve Loop(2) = {2, 3, 4, -7};
 Plane Surface(2) = {2};
 Physical Curve("bottom") = {1, 2};
 Physical Curve("bottom_left") = {1};
+Physical Curve("bottom_right") = {2};
 Physical Curve("top") = {4, 5};
 Physical Surface("left") = {1};
 Physical Surface("right") = {2};
