@@ -551,7 +551,7 @@ contains
          if (material_cfg_validate(deck%material, errmsg)) return
       end if
       do i = 1, size(deck%body)
-         if (body_cfg_validate(deck%body(i), i, deck%body(1:i - 1)%name, deck%material, deck%mesh%file, errmsg)) return
+         if (body_cfg_validate(deck%body(i), i, deck%body(1:i - 1), deck%material, deck%mesh%file, errmsg)) return
       end do
       if (solver_cfg_validate(deck%solver, errmsg)) return
       if (initial_cfg_validate(deck%initial, errmsg)) return

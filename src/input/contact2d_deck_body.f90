@@ -69,13 +69,14 @@ contains
    end function body_cfg_not_finite
 
    !> Validate occurrence k: name and surface given, the name not that of an earlier body
-   !> (names(1:k-1)), a built-in mesh refused (mesh_file = ''; it has no surfaces), each material
+   !> (earlier: the groups before it), a built-in mesh refused (mesh_file = ''; it has no surfaces), each material
    !> value given here or in &material (default), then the law's checks. Fills the values left
    !> out from `material`. True if refused.
-   logical function body_cfg_validate(cfg, k, names, material, mesh_file, errmsg) result(bad)
+   logical function body_cfg_validate(cfg, k, earlier, material, mesh_file, errmsg) result(bad)
       type(body_cfg_t), intent(inout) :: cfg
       integer, intent(in) :: k
-      character(len=*), intent(in) :: names(:), mesh_file
+      type(body_cfg_t), intent(in) :: earlier(:)
+      character(len=*), intent(in) :: mesh_file
       type(material_cfg_t), intent(in) :: material
       character(len=:), allocatable, intent(inout) :: errmsg
       character(len=:), allocatable :: g
@@ -92,7 +93,7 @@ contains
          errmsg = g//": name is required (e.g. name = 'upper')"
          return
       end if
-      if (any(names == cfg%name)) then
+      if (any(earlier%name == cfg%name)) then
          errmsg = g//": name = '"//trim(cfg%name)//"' is the name of an earlier &body"
          return
       end if

@@ -60,6 +60,7 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       integer :: i, nx, ny, nflip
       type(material_t) :: material
+      type(material_t), allocatable :: mats(:)
       !> outward normals of the sides bottom, right, top, left
       real(wp), parameter :: outward(2, 4) = reshape([0.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
                                                       -1.0_wp, 0.0_wp], [2, 4])
@@ -102,7 +103,11 @@ contains
          ! one body; the element matrices and masses of each element with its body's material
          call build_bodies()
          if (stat /= 0) return
-         call model%stiff%init_bodies(model%mesh, model%bodies%material, model%body_of, stat, errmsg)
+         allocate (mats(size(model%bodies)))
+         do i = 1, size(model%bodies)
+            mats(i) = model%bodies(i)%material
+         end do
+         call model%stiff%init_bodies(model%mesh, mats, model%body_of, stat, errmsg)
       end if
       if (stat /= 0) return
       allocate (model%pairs(0))
