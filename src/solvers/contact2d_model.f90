@@ -315,7 +315,10 @@ contains
                end if
             end do
          end do
-         if (slave == 0) slave = model%body_of(1)
+         ! a chain of one node (no edge): the lowest body of that node's elements
+         if (slave == 0 .and. size(nodes) > 0) &
+            slave = minval(model%body_of(adj_elem(adj_start(nodes(1)):adj_start(nodes(1) + 1) - 1)))
+         if (slave == 0) slave = 1
       end subroutine chain_body
 
       subroutine add_edge_load(cfg, group, k)
