@@ -14,7 +14,7 @@ stress in plane strain in each, from its own material only (nothing couples them
     u_y = -p (1 - nu_i^2)/E_i y.
 Both with --static (one linear solve: the fields are linear in each body, which Q1 reproduces
 exactly, so every element's stress within 1e-10 p and the displacement within 1e-10 relative,
-round-off of a direct solve). The bodies are read back through the postproc package
+round-off of a direct solve), then the explicit engine (see explicit()). The bodies are read back through the postproc package
 (contact2d.open_run: Run.body, node_body, body_names; /mesh/body, /mesh/node_body) and
 checked against the geometry: an element's body is the block its centre lies in, a node's the
 lowest body of its elements.
@@ -33,6 +33,10 @@ CASES = {
     "separate": ("separate_blocks.nml", 50.0, [("left", 7.0e4, 0.3, (0.0, 1.0), (0.0, 0.5)),
                                                ("right", 2.1e5, 0.2, (1.25, 2.25), (0.0, 0.6))]),
 }
+
+
+# the densities of the decks' bodies [t/mm^3] (bimaterial: &material's, the default of both)
+RHO = {"bimaterial": (2.7e-9, 2.7e-9), "separate": (2.7e-9, 7.8e-9)}
 
 
 def inside(p, xr, yr, tol=1e-9):
@@ -119,6 +123,52 @@ def body(t):
     scale = float(np.max(np.abs(u_exact)))
     t.check_close(run, "displacement vs each body's exact linear field", u_exact, u, rtol=1e-10, scale=scale,
                   reason=reason)
+    explicit(t, deck_name, p, bodies, u_exact, s_all=[(k, stress_exact(t.args.case, p, nu))
+                                                     for k, (_, _, nu, _, _) in enumerate(bodies, start=1)])
+
+
+def stress_exact(case, p, nu):
+    return np.array([-p * nu / (1 - nu), -p, 0.0]) if case == "bimaterial" else np.array([0.0, -p, 0.0])
+
+
+def explicit(t, deck_name, p, bodies, u_exact, s_all):
+    """The explicit engine on the same deck: each element's matrix and lumped mass from its own
+    body, the time step from the element bound over all bodies. Checked from first principles
+    (c2dtest.q1_plane_strain, 2 x 2 Gauss, each element with its body's E, nu, rho): /mesh/mass
+    = the assembled lumped masses; dt_critical = 2 / sqrt(max over elements of the largest
+    eigenvalue of M_e^-1/2 K_e M_e^-1/2); the run converges (tol_residual 1e-10) to the same
+    exact field to 1e-8 (the relaxation residual, as regression_uniaxial)."""
+    run = t.run(t.deck(deck_name), name=t.args.case + "_explicit")
+    t.expect_exit(run, 0)
+    with contact2d.open_run(run.h5) as r:
+        x = r.coordinates
+        conn = r.connectivity - 1
+        elem_body = r.body
+        mass = r.mass
+        u = r.read("final/displacement")
+        stress = r.read("final/stress")
+        dt_critical = float(r.attrs["dt_critical"])
+        t.check_equal(run, "converged", 1, int(r.attrs["converged"]))
+    m_exact = np.zeros(len(x))
+    omega2 = 0.0
+    for e, nodes in enumerate(conn):
+        _, E, nu, _, _ = bodies[elem_body[e] - 1]
+        rho = RHO[t.args.case][elem_body[e] - 1]
+        ke, me = c2dtest.q1_plane_strain(x[nodes], np.array([[0, 1, 2, 3]]), E, nu, rho)
+        m_exact[nodes] += me[0::2]
+        sc = 1 / np.sqrt(me)
+        omega2 = max(omega2, float(np.linalg.eigvalsh(ke * sc[:, None] * sc[None, :])[-1]))
+    t.check_close(run, "/mesh/mass = lumped masses with each element's own density", m_exact, mass, rtol=1e-12,
+                  reason="the same integrals, summed in another order")
+    t.check_close(run, "dt_critical = 2/sqrt(max over all bodies' elements of omega_e^2)", 2 / np.sqrt(omega2),
+                  dt_critical, rtol=1e-10, reason="dense 8 x 8 eigenproblems here, LAPACK dsygv in the program")
+    reason = "converged to tol_residual 1e-10; the bound is 1e-8 relative"
+    t.check_close(run, "explicit: displacement vs the exact field", u_exact, u, rtol=1e-8,
+                  scale=float(np.max(np.abs(u_exact))), reason=reason)
+    for k, s_exact in s_all:
+        sel = elem_body == k
+        t.check_close(run, "explicit: body %d stress" % k, np.tile(s_exact, (int(sel.sum()), 1)), stress[sel],
+                      atol=1e-8 * p, reason=reason)
 
 
 if __name__ == "__main__":
