@@ -50,17 +50,17 @@ def _value(text):
 def parse_effective_deck(text):
     """The 'effective_deck' attribute (one 'key = value' per line) as a dict of groups.
 
-    Groups that may repeat (dirichlet, traction) map to lists of dicts, the others to dicts.
+    Groups that may repeat (dirichlet, traction, body) map to lists of dicts, the others to dicts.
     List-valued variables ('values', 'times', ...) always come back as lists.
     """
-    deck = {"dirichlet": [], "traction": []}
+    deck = {"dirichlet": [], "traction": [], "body": []}
     current = None
     for line in text.splitlines():
         m = _GROUP.match(line)
         if m:
             current = {}
             name = m.group(1).lower()
-            if name in ("dirichlet", "traction"):
+            if name in ("dirichlet", "traction", "body"):
                 deck[name].append(current)
             else:
                 deck[name] = current
@@ -170,6 +170,28 @@ class Run:
     def mass(self):
         """(nnode,) lumped nodal mass [t]."""
         return self.file["mesh/mass"][()]
+
+    @property
+    def body(self):
+        """(nel,) body of each element, 1-based (all 1 in a file written before bodies existed)."""
+        if "mesh/body" in self.file:
+            return self.file["mesh/body"][()]
+        return np.ones(len(self.connectivity), dtype=np.int32)
+
+    @property
+    def node_body(self):
+        """(nnode,) body of each node, 1-based: the lowest body of its elements."""
+        if "mesh/node_body" in self.file:
+            return self.file["mesh/node_body"][()]
+        return np.ones(len(self.coordinates), dtype=np.int32)
+
+    @property
+    def body_names(self):
+        """The body names, body k at index k - 1 (['body'] in a file written before bodies existed)."""
+        a = self.file["mesh"].attrs
+        if "body_count" not in a:
+            return ["body"]
+        return [_plain(a["body_name_%d" % k]) for k in range(1, int(a["body_count"]) + 1)]
 
     @property
     def nx(self):

@@ -49,6 +49,17 @@ contains
       write (output_unit, '(a)') 'mesh '//extent//' '// &
          str(model%mesh%nel)//' Q1 elements, '//str(model%mesh%nnode)//' nodes, '// &
          str(model%stiff%nshape)//' distinct element matrix(es)'
+      ! the bodies of a deck with &body groups (one body, the whole mesh, otherwise: the deck's
+      ! &material, echoed above)
+      if (size(deck%body) > 0) then
+         do i = 1, size(model%bodies)
+            associate (b => model%bodies(i), c => deck%body(i))
+               write (output_unit, '(a)') 'body '//str(i)//" '"//printable(b%name)//"': "// &
+                  str(size(b%elements))//' elements, E = '//str(c%young)//' MPa, nu = '//str(c%poisson)// &
+                  ', rho = '//str(c%density)//' t/mm^3'
+            end associate
+         end do
+      end if
    end subroutine report_header
 
    !> A warning when the first stage that moves a load (a &dirichlet or &traction curve: its first

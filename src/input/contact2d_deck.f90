@@ -31,6 +31,8 @@ module contact2d_deck
                                   mesh_cfg_validate, mesh_cfg_echo
    use contact2d_deck_material, only: material_cfg_t, material_variables, material_cfg_read, &
                                       material_cfg_not_finite, material_cfg_validate, material_cfg_echo
+   use contact2d_deck_body, only: body_cfg_t, body_variables, body_cfg_read, body_cfg_not_finite, &
+                                  body_cfg_validate, body_cfg_echo
    use contact2d_deck_loads, only: edge_load_cfg_t, edge_load_variables, edge_load_cfg_read, &
                                    edge_load_cfg_not_finite, edge_load_cfg_validate, edge_load_cfg_echo
    use contact2d_deck_contact, only: contact_cfg_t, contact_variables, contact_cfg_read, contact_cfg_not_finite, &
@@ -45,13 +47,13 @@ module contact2d_deck
    private
    public :: deck_t, deck_read, deck_blame, mesh_cfg_t, material_cfg_t, edge_load_cfg_t, contact_cfg_t
    public :: solver_cfg_t, output_cfg_t, initial_cfg_t, unset, max_stages, max_points, edge_id, group_names
-   public :: group_variables
+   public :: group_variables, body_cfg_t
 
    !> The variables of each group (of group_names), from the group modules (test_deck checks
    !> that each is accepted); for suggestions.
-   character(len=*), parameter :: group_variables(8) = [character(len=320) :: &
+   character(len=*), parameter :: group_variables(9) = [character(len=320) :: &
       mesh_variables, material_variables, edge_load_variables, edge_load_variables, contact_variables, &
-      solver_variables, output_variables, initial_variables]
+      solver_variables, output_variables, initial_variables, body_variables]
 
    !> The logical variables (group:variable). Their values are checked as text before the
    !> namelist read: Fortran reads any word whose first letter after an optional '.' is T or F
@@ -69,6 +71,8 @@ module contact2d_deck
       character(len=:), allocatable :: effective   !< echo of the effective values (a valid deck)
       type(mesh_cfg_t) :: mesh
       type(material_cfg_t) :: material
+      !> the &body groups (none: one body, every element, &material)
+      type(body_cfg_t), allocatable :: body(:)
       type(edge_load_cfg_t), allocatable :: dirichlet(:)
       type(edge_load_cfg_t), allocatable :: traction(:)
       type(contact_cfg_t) :: contact
@@ -143,7 +147,7 @@ contains
          paren = index(v, '(')
          if (paren > 0) v = trim(v(1:paren - 1))
          if (len(v) == 0) cycle
-         if (g == 'dirichlet' .or. g == 'traction') then
+         if (g == 'dirichlet' .or. g == 'traction' .or. g == 'body') then
             about_group = index(m, '&'//g//' (#'//str(ovr(i)%index)//')') > 0
          else
             about_group = index(m, g//': ') == 1
@@ -235,7 +239,11 @@ contains
             errmsg = "--set '"//spec//"': the deck has no &"//group//' group'
             return
          end if
-         if (group == 'dirichlet' .or. group == 'traction') then
+         if (group == 'body' .and. nocc == 0) then
+            errmsg = "--set '"//spec//"': the deck has no &body group"
+            return
+         end if
+         if (group == 'dirichlet' .or. group == 'traction' .or. group == 'body') then
             if (ovr(i)%index == 0 .and. nocc > 1) then
                errmsg = "--set '"//spec//"': the deck has "//str(nocc)//' &'//group// &
                         ' groups; say which, e.g. '//group//'#2:...'
@@ -390,7 +398,7 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       character(len=line_len) :: none(0)
-      integer :: b, nd, nt, k, at
+      integer :: b, nd, nt, nb, k, at
       character(len=:), allocatable :: where, label
 
       stat = 0
@@ -398,6 +406,7 @@ contains
       ! every value as text first (value_problem), the deck's groups, then the --set ones
       nd = 0
       nt = 0
+      nb = 0
       do b = 1, size(blocks)
          label = trim(blocks(b)%name)
          if (label == 'dirichlet') then
@@ -406,6 +415,9 @@ contains
          else if (label == 'traction') then
             nt = nt + 1
             label = label//'#'//str(nt)
+         else if (label == 'body') then
+            nb = nb + 1
+            label = label//'#'//str(nb)
          end if
          errmsg = value_problem(lines(blocks(b)%first:blocks(b)%last), trim(blocks(b)%name), label, at)
          if (len(errmsg) > 0) then
@@ -416,7 +428,8 @@ contains
       end do
       do k = 1, size(ovr)
          label = trim(ovr(k)%group)
-         if (label == 'dirichlet' .or. label == 'traction') label = label//'#'//str(max(ovr(k)%index, 1))
+         if (label == 'dirichlet' .or. label == 'traction' .or. label == 'body') &
+            label = label//'#'//str(max(ovr(k)%index, 1))
          errmsg = value_problem([ovr(k)%assignment], trim(ovr(k)%group), label, at)
          if (len(errmsg) > 0) then
             stat = 1
@@ -426,8 +439,10 @@ contains
       end do
       allocate (deck%dirichlet(count(blocks%name == 'dirichlet')))
       allocate (deck%traction(count(blocks%name == 'traction')))
+      allocate (deck%body(count(blocks%name == 'body')))
       nd = 0
       nt = 0
+      nb = 0
       ! singletons absent from the deck keep their defaults but still take their overrides
       do k = 1, size(group_names)
          if (any(blocks%name == group_names(k))) cycle
@@ -461,6 +476,10 @@ contains
                nt = nt + 1
                deck%traction(nt)%line = blocks(b)%first
                call edge_load_cfg_read(blk, 'traction', pick(ovr, 'traction', nt), where, deck%traction(nt), stat, errmsg)
+            case ('body')
+               nb = nb + 1
+               deck%body(nb)%line = blocks(b)%first
+               call body_cfg_read(blk, pick(ovr, 'body', nb), where, deck%body(nb), stat, errmsg)
             end select
          end associate
          if (stat /= 0) then
@@ -527,7 +546,13 @@ contains
       ! every real first: finite and of sane magnitude, before any comparison (contact2d_checks)
       if (any_not_finite(deck, errmsg)) return
       if (mesh_cfg_validate(deck%mesh, errmsg)) return
-      if (material_cfg_validate(deck%material, errmsg)) return
+      ! &material: the material of the one body; with &body groups the default of their values
+      if (size(deck%body) == 0) then
+         if (material_cfg_validate(deck%material, errmsg)) return
+      end if
+      do i = 1, size(deck%body)
+         if (body_cfg_validate(deck%body(i), i, deck%body(1:i - 1), deck%material, deck%mesh%file, errmsg)) return
+      end do
       if (solver_cfg_validate(deck%solver, errmsg)) return
       if (initial_cfg_validate(deck%initial, errmsg)) return
       if (initial_state_refused(deck, errmsg)) return
@@ -583,6 +608,9 @@ contains
       bad = .true.
       if (mesh_cfg_not_finite(deck%mesh, errmsg)) return
       if (material_cfg_not_finite(deck%material, errmsg)) return
+      do j = 1, size(deck%body)
+         if (body_cfg_not_finite(deck%body(j), 'body#'//str(j), errmsg)) return
+      end do
       do j = 1, size(deck%dirichlet)
          if (edge_load_cfg_not_finite(deck%dirichlet(j), 'dirichlet#'//str(j), errmsg)) return
       end do
@@ -641,7 +669,14 @@ contains
       type(deck_t), intent(in) :: deck
       character(len=:), allocatable :: text
       integer :: i
-      text = mesh_cfg_echo(deck%mesh)//material_cfg_echo(deck%material)
+      text = mesh_cfg_echo(deck%mesh)
+      ! with &body groups each body echoes its values (the defaults filled in): &material only
+      ! when it is complete (it may be a partial default)
+      if (size(deck%body) == 0 .or. all([deck%material%young, deck%material%poisson, deck%material%density] /= unset)) &
+         text = text//material_cfg_echo(deck%material)
+      do i = 1, size(deck%body)
+         text = text//body_cfg_echo(deck%body(i))
+      end do
       do i = 1, size(deck%dirichlet)
          text = text//edge_load_cfg_echo(deck%dirichlet(i), 'dirichlet')
       end do

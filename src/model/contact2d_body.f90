@@ -1,7 +1,7 @@
-!> A body of the model: its name, its elements and its material. The seam for several bodies
-!> (docs/architecture.md, "Seams"): the model holds a list of bodies; today it has one, the
-!> whole mesh with the deck's &material, and the element matrices (contact2d_stiffness) are
-!> built from that one material.
+!> A body of the model: its name, its elements and its material (docs/architecture.md, "Seams"):
+!> the model holds a list of bodies, the deck's &body groups or one, the whole mesh with the
+!> deck's &material; the element matrices and masses of each element (contact2d_stiffness) are
+!> built from its body's material.
 module contact2d_body
    use contact2d_material, only: material_t
    implicit none

@@ -4,7 +4,8 @@
 !> A .geo file is meshed here (2D, then refined `level` times by Gmsh: each quad split in four,
 !> new boundary nodes on the geometry); a .msh file (any version Gmsh reads) is taken as it is,
 !> then refined the same way. Only 4-node quadrilaterals are accepted. Physical curves become
-!> named boundary groups of 2-node edges. Nodes are renumbered 1..n in increasing Gmsh tag,
+!> named boundary groups of 2-node edges, physical surfaces named groups of elements (the bodies
+!> of a deck with &body groups). Nodes are renumbered 1..n in increasing Gmsh tag,
 !> keeping only the nodes of the quadrilaterals (a circle's centre point carries no mass).
 module contact2d_gmsh
    use, intrinsic :: iso_c_binding, only: c_int, c_size_t, c_double, c_char, c_ptr, c_null_ptr, &
@@ -252,6 +253,8 @@ contains
       call mesh%init_arrays(x, conn)
       mesh%elem_id = elem_id
       call mesh%set_groups(names, gstart, seg(:, 1:nseg))
+      call collect_surfaces(path, elem_id, mesh%surface_name, mesh%sstart, mesh%selem, stat, errmsg)
+      if (stat /= 0) return
       ! nodes in reverse Cuthill-McKee order for the sweep's locality, an element's nodes together
       ! for its groups of rows (outputs keep the file's)
       call rcm_order(mesh%conn, mesh%nnode, perm)
@@ -475,6 +478,86 @@ contains
       gstart(ngroup + 1) = nseg + 1
       stat = 0
    end subroutine collect_groups
+
+   !> The physical surfaces: each becomes a named group of elements (its name, or its tag when it
+   !> has none), as indices into the quadrilaterals of collect_quads (elem_id: their Gmsh tags);
+   !> surface s is selem(sstart(s):sstart(s+1)-1). An element of two surfaces is listed in both
+   !> (the model refuses it when both are bodies).
+   subroutine collect_surfaces(path, elem_id, names, sstart, selem, stat, errmsg)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: elem_id(:)
+      character(len=64), allocatable, intent(out) :: names(:)
+      integer, allocatable, intent(out) :: sstart(:), selem(:)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      type(c_ptr) :: p_dimtags, p_ents, p_name, p_etags, p_enodes
+      integer(c_size_t) :: n_dimtags, n_ents, n_etags, n_enodes
+      integer(c_int) :: ierr
+      integer(c_int), pointer :: dimtags(:), ents(:)
+      integer(c_size_t), pointer :: etags(:)
+      integer, allocatable :: index_of(:), add(:)
+      integer :: i, j, g, ngroup, n, m, tag
+      character(len=:), allocatable :: name
+
+      stat = 1
+      ! Gmsh element tag -> element index (the tags of the quadrilaterals, positive)
+      allocate (index_of(0:max(0, maxval(elem_id))))
+      index_of = 0
+      do i = 1, size(elem_id)
+         index_of(elem_id(i)) = i
+      end do
+      call gmshModelGetPhysicalGroups(p_dimtags, n_dimtags, 2_c_int, ierr)
+      if (ierr /= 0) then
+         errmsg = "mesh:file = '"//path//"': Gmsh cannot list its physical surfaces"//last_error()
+         return
+      end if
+      ngroup = int(n_dimtags)/2
+      allocate (names(ngroup), sstart(ngroup + 1), selem(0))
+      if (ngroup > 0) call c_f_pointer(p_dimtags, dimtags, [n_dimtags])
+      n = 0
+      do g = 1, ngroup
+         sstart(g) = n + 1
+         call gmshModelGetPhysicalName(2_c_int, dimtags(2*g), p_name, ierr)
+         if (ierr /= 0) exit
+         name = c_string(p_name)
+         call gmshFree(p_name)
+         if (len(name) == 0) name = str(int(dimtags(2*g)))   ! unnamed: its tag
+         names(g) = name
+         call gmshModelGetEntitiesForPhysicalGroup(2_c_int, dimtags(2*g), p_ents, n_ents, ierr)
+         if (ierr /= 0) exit
+         call c_f_pointer(p_ents, ents, [n_ents])
+         do i = 1, int(n_ents)
+            call gmshModelMeshGetElementsByType(type_quad4, p_etags, n_etags, p_enodes, n_enodes, ents(i), &
+                                                0_c_size_t, 1_c_size_t, ierr)
+            if (ierr /= 0) exit
+            call c_f_pointer(p_etags, etags, [n_etags])
+            allocate (add(n_etags))
+            m = 0
+            do j = 1, int(n_etags)
+               tag = int(etags(j))
+               if (tag < 1 .or. tag > ubound(index_of, 1)) cycle
+               if (index_of(tag) == 0) cycle
+               m = m + 1
+               add(m) = index_of(tag)
+            end do
+            selem = [selem, add(1:m)]   ! one reallocation per surface entity
+            n = n + m
+            deallocate (add)
+            call gmshFree(p_etags)
+            call gmshFree(p_enodes)
+         end do
+         call gmshFree(p_ents)
+         if (ierr /= 0) exit
+      end do
+      if (c_associated(p_dimtags)) call gmshFree(p_dimtags)
+      if (ierr /= 0) then
+         errmsg = "mesh:file = '"//path//"': Gmsh cannot read a physical surface"//last_error()
+         return
+      end if
+      sstart(ngroup + 1) = n + 1
+      stat = 0
+      errmsg = ''
+   end subroutine collect_surfaces
 
    !> Append the 2-node line elements of curve `tag` to seg.
    subroutine curve_edges(tag, seg, nseg, local, stat, errmsg)

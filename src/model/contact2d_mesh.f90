@@ -38,6 +38,12 @@ module contact2d_mesh
       !> nodes were renumbered at reading (renumber); absent: the same as its id. Outputs are
       !> written in the file's order (docs/output.md).
       integer, allocatable :: file_node(:)
+      !> named element groups (Gmsh physical surfaces): names, and their elements as a list per
+      !> surface: the elements of surface s are selem(sstart(s):sstart(s+1)-1) (indices into conn);
+      !> not allocated for the built-in rectangle
+      character(len=64), allocatable :: surface_name(:)
+      integer, allocatable :: sstart(:)
+      integer, allocatable :: selem(:)
    contains
       procedure :: init_rectangle => mesh_init_rectangle
       procedure :: init_arrays => mesh_init_arrays
@@ -48,6 +54,8 @@ module contact2d_mesh
       procedure :: set_groups => mesh_set_groups
       procedure :: group_index => mesh_group_index
       procedure :: group_list => mesh_group_list
+      procedure :: surface_index => mesh_surface_index
+      procedure :: surface_list => mesh_surface_list
       procedure :: select_group => mesh_select_group
       procedure :: group_chain => mesh_group_chain
       procedure :: orient => mesh_orient
@@ -239,6 +247,36 @@ contains
       end if
       if (len(s) == 0) s = 'none (the mesh has no physical curve)'
    end function mesh_group_list
+
+   !> Index of the physical surface called `name` (exact match), 0 if none.
+   pure integer function mesh_surface_index(this, name) result(s)
+      class(mesh_t), intent(in) :: this
+      character(len=*), intent(in) :: name
+      integer :: k
+      s = 0
+      if (.not. allocated(this%surface_name)) return
+      do k = 1, size(this%surface_name)
+         if (trim(this%surface_name(k)) == trim(name)) then
+            s = k
+            return
+         end if
+      end do
+   end function mesh_surface_index
+
+   !> The physical surface names as "'a', 'b'" (or 'none' when the mesh has none).
+   function mesh_surface_list(this) result(s)
+      class(mesh_t), intent(in) :: this
+      character(len=:), allocatable :: s
+      integer :: k
+      s = ''
+      if (allocated(this%surface_name)) then
+         do k = 1, size(this%surface_name)
+            if (k > 1) s = s//', '
+            s = s//"'"//trim(this%surface_name(k))//"'"
+         end do
+      end if
+      if (len(s) == 0) s = 'none (the mesh has no physical surface)'
+   end function mesh_surface_list
 
    !> Id of element e in the mesh file (its index when the mesh was not read from a file).
    pure integer function mesh_id_of(this, e) result(id)

@@ -13,7 +13,8 @@ module contact2d_pair
 
    !> One slave boundary against one master.
    type :: contact_pair_t
-      integer :: slave_body = 1                 !< index of the slave body in model%bodies
+      integer :: slave_body = 1                 !< index of the slave body in model%bodies (the body of
+                                                !< every edge of the slave boundary)
       integer, allocatable :: slave_nodes(:)    !< its contact nodes (mesh numbering, by abscissa)
       integer :: master_kind = master_obstacle
       integer :: master_body = 0                !< index of the master body (master_body kind)

@@ -50,6 +50,7 @@ module contact2d_stiffness
       real(wp) :: stencil(2, 2, -1:1, -1:1) = 0   !< interior stencil blocks [N/mm]
    contains
       procedure :: init => stiffness_init
+      procedure :: init_bodies => stiffness_init_bodies
       procedure :: apply => stiffness_apply
       procedure :: apply_elements => stiffness_apply_elements
       procedure :: dt_critical => stiffness_dt_critical
@@ -59,14 +60,31 @@ module contact2d_stiffness
 contains
 
    !> Form the element matrices (once per distinct shape), the lumped mass and the element
-   !> bound on omega_max. stat /= 0 if LAPACK fails or an element is inverted.
+   !> bound on omega_max, every element of material `mat` (one body). stat /= 0 if LAPACK fails
+   !> or an element is inverted.
    subroutine stiffness_init(this, mesh, mat, stat, errmsg)
       class(stiffness_t), intent(out) :: this
       type(mesh_t), intent(in) :: mesh
       type(material_t), intent(in) :: mat
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
+      integer :: e
+      call stiffness_init_bodies(this, mesh, [mat], [(1, e=1, mesh%nel)], stat, errmsg)
+   end subroutine stiffness_init
+
+   !> As stiffness_init with element e of material mats(body_of(e)) (several bodies): a shape is
+   !> a geometry and a material, so two equal elements of two bodies get two matrices and two
+   !> lumped masses, and the element bound on omega_max is the largest over every body's shapes
+   !> (SPEC section 4: the critical step of the whole mesh).
+   subroutine stiffness_init_bodies(this, mesh, mats, body_of, stat, errmsg)
+      class(stiffness_t), intent(out) :: this
+      type(mesh_t), intent(in) :: mesh
+      type(material_t), intent(in) :: mats(:)
+      integer, intent(in) :: body_of(:)   !< (nel) index into mats of each element
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
       real(wp), allocatable :: rel(:, :, :), me(:, :)
+      integer, allocatable :: shape_body(:)
       real(wp) :: xe(2, 4), r(2, 4), omega2, scale
       integer :: e, s, first, info
       character(len=64) :: buf
@@ -75,7 +93,7 @@ contains
       call element_create('q1', this%element, stat, errmsg)
       if (stat /= 0) return
       allocate (this%shape_of(mesh%nel), this%mass(mesh%nnode), rel(2, 4, mesh%nel))
-      allocate (this%ke(8, 8, mesh%nel), me(4, mesh%nel))
+      allocate (this%ke(8, 8, mesh%nel), me(4, mesh%nel), shape_body(mesh%nel))
       this%conn = mesh%conn
       this%mass = 0
       this%nshape = 0
@@ -92,6 +110,7 @@ contains
          this%shape_of(e) = 0
          first = max(1, this%nshape - shape_search + 1)
          do s = this%nshape, first, -1
+            if (shape_body(s) /= body_of(e)) cycle
             if (all(abs(rel(:, :, s) - r) <= scale)) then
                this%shape_of(e) = s
                exit
@@ -100,9 +119,12 @@ contains
          if (this%shape_of(e) == 0) then
             this%nshape = this%nshape + 1
             rel(:, :, this%nshape) = r
+            shape_body(this%nshape) = body_of(e)
             this%shape_of(e) = this%nshape
-            call this%element%stiffness(xe, mat%dmat(), this%ke(:, :, this%nshape))
-            call this%element%lumped_mass(xe, mat%density(), me(:, this%nshape))
+            associate (mat => mats(body_of(e)))
+               call this%element%stiffness(xe, mat%dmat(), this%ke(:, :, this%nshape))
+               call this%element%lumped_mass(xe, mat%density(), me(:, this%nshape))
+            end associate
          end if
          ! the lumped mass of the element's shape, as its stiffness: every element of a shape
          ! the same masses to the bit (docs/performance.md "Masses by shape")
@@ -131,7 +153,7 @@ contains
       else
          call build_rows(this, [(e, e=1, mesh%nnode)])
       end if
-   end subroutine stiffness_init
+   end subroutine stiffness_init_bodies
 
    !> Block-CSR rows of K for the given nodes: K(n, m) = sum over the elements holding n and m of
    !> the 2 x 2 block of K_e, columns in increasing node order.

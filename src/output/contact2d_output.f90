@@ -141,6 +141,14 @@ contains
       call this%file%dataset(g, 'connectivity', model%mesh%file_id(model%mesh%conn), '1')
       mass = model%mesh%file_order(reshape(model%stiff%mass, [1, model%mesh%nnode]))
       call this%file%dataset(g, 'mass', mass(1, :), 't')
+      ! the bodies (docs/output.md "/mesh"): of each element, of each node (the lowest of a node
+      ! shared by bonded bodies), their count and names as attributes of /mesh
+      call this%file%dataset(g, 'body', model%body_of, '1')
+      call this%file%dataset(g, 'node_body', node_body(model), '1')
+      call this%file%attr(g, 'body_count', size(model%bodies))
+      do k = 1, size(model%bodies)
+         call this%file%attr(g, 'body_name_'//str(k), model%bodies(k)%name)
+      end do
       call this%file%close_group(g)
 
       if (model%contact%active) then
@@ -155,6 +163,8 @@ contains
             call this%file%dataset(g, 'threshold', c%threshold, 'MPa')
             ! per-node outward normal of the body, fixed at set-up (docs/geometry.md)
             call this%file%dataset(g, 'normal', c%normal, '1')
+            ! the body whose boundary Gamma_c is (1-based, as /mesh/body)
+            if (size(model%pairs) > 0) call this%file%attr(g, 'slave_body', model%pairs(1)%slave_body)
             if (c%friction) then
                call this%file%attr(g, 'friction', c%law%name())
                ! the law's own parameters (Coulomb: friction_coefficient), whatever the law
@@ -418,6 +428,24 @@ contains
       end associate
    end subroutine write_final_contact
 
+   !> The body of each node (nnode, in the file's order of the nodes): the lowest body index of
+   !> its elements (a node on the curve where bonded bodies meet belongs to both).
+   function node_body(model) result(nb)
+      type(model_t), intent(in) :: model
+      integer, allocatable :: nb(:)
+      integer, allocatable :: own(:)
+      integer :: e, a, n
+      allocate (own(model%mesh%nnode), nb(model%mesh%nnode))
+      own = huge(1)
+      do e = 1, model%mesh%nel
+         do a = 1, 4
+            n = model%mesh%conn(a, e)
+            own(n) = min(own(n), model%body_of(e))
+         end do
+      end do
+      nb(model%mesh%file_id([(n, n=1, model%mesh%nnode)])) = own
+   end function node_body
+
    !> <output>.xmf next to the HDF5 file (docs/output.md, "XDMF sidecar"), every array a reference
    !> into the HDF5 file: the mesh with the final displacement, velocity and stress; the contact
    !> boundary as a polyline through the contact nodes with the final contact fields; and, with
@@ -463,6 +491,13 @@ contains
       call put(' <Attribute Name="stress_xx_yy_xy" AttributeType="Matrix" Center="Cell">')
       call put('  <DataItem Dimensions="'//ne//' 3" NumberType="Float" Precision="8" Format="HDF">'// &
          base//':/final/stress</DataItem>')
+      call put(' </Attribute>')
+      ! the body of each element and of each node (1-based, /mesh/body and /mesh/node_body)
+      call put(' <Attribute Name="body" AttributeType="Scalar" Center="Cell">')
+      call put('  <DataItem Dimensions="'//ne//'" NumberType="Int" Format="HDF">'//base//':/mesh/body</DataItem>')
+      call put(' </Attribute>')
+      call put(' <Attribute Name="node_body" AttributeType="Scalar" Center="Node">')
+      call put('  <DataItem Dimensions="'//nn//'" NumberType="Int" Format="HDF">'//base//':/mesh/node_body</DataItem>')
       call put(' </Attribute>')
       call put('</Grid>')
       if (has_line) then

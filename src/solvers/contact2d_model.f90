@@ -7,7 +7,7 @@ module contact2d_model
    use contact2d_checks, only: check_positive
    use contact2d_messages, only: messages_t
    use contact2d_deck, only: deck_t, edge_load_cfg_t, edge_id, unset
-   use contact2d_mesh, only: mesh_t
+   use contact2d_mesh, only: mesh_t, node_elements
    use contact2d_material, only: material_t, material_init
    use contact2d_stiffness, only: stiffness_t
    use contact2d_mass_scaling, only: mass_scale
@@ -28,8 +28,10 @@ module contact2d_model
    !> from then on. What changes during a run is in the state (contact2d_state).
    type :: model_t
       type(mesh_t) :: mesh
-      !> the bodies (contact2d_body): one today, the whole mesh
+      !> the bodies (contact2d_body): the deck's &body groups, or one, the whole mesh
       type(body_t), allocatable :: bodies(:)
+      !> the body of each element (nel), an index into bodies
+      integer, allocatable :: body_of(:)
       !> the contact pairs (contact2d_pair): none, or one (the deck's &contact) today
       type(contact_pair_t), allocatable :: pairs(:)
       type(stiffness_t) :: stiff
@@ -62,6 +64,7 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       integer :: i, nx, ny, nflip
       type(material_t) :: material
+      type(material_t), allocatable :: mats(:)
       !> outward normals of the sides bottom, right, top, left
       real(wp), parameter :: outward(2, 4) = reshape([0.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
                                                       -1.0_wp, 0.0_wp], [2, 4])
@@ -88,14 +91,28 @@ contains
          ny = deck%mesh%ny*2**deck%mesh%level
          call model%mesh%init_rectangle(deck%mesh%lx, deck%mesh%ly, nx, ny)
       end if
-      ! the one body: every element, the deck's material; the element matrices and masses are
-      ! formed with the body's material (contact2d_stiffness)
-      call material_init(material, deck%material%young, deck%material%poisson, &
-                         deck%material%density, stat, errmsg)
-      if (stat /= 0) return
-      allocate (model%bodies(1))
-      call body_init(model%bodies(1), 'body', [(i, i=1, model%mesh%nel)], material)
-      call model%stiff%init(model%mesh, model%bodies(1)%material, stat, errmsg)
+      if (size(deck%body) == 0) then
+         ! the one body: every element, the deck's material; the element matrices and masses are
+         ! formed with the body's material (contact2d_stiffness)
+         call material_init(material, deck%material%young, deck%material%poisson, &
+                            deck%material%density, stat, errmsg)
+         if (stat /= 0) return
+         allocate (model%bodies(1))
+         call body_init(model%bodies(1), 'body', [(i, i=1, model%mesh%nel)], material)
+         call model%stiff%init(model%mesh, model%bodies(1)%material, stat, errmsg)
+         allocate (model%body_of(model%mesh%nel))
+         model%body_of = 1
+      else
+         ! the deck's bodies: each the elements of one physical surface, every element in exactly
+         ! one body; the element matrices and masses of each element with its body's material
+         call build_bodies()
+         if (stat /= 0) return
+         allocate (mats(size(model%bodies)))
+         do i = 1, size(model%bodies)
+            mats(i) = model%bodies(i)%material
+         end do
+         call model%stiff%init_bodies(model%mesh, mats, model%body_of, stat, errmsg)
+      end if
       if (stat /= 0) return
       allocate (model%pairs(0))
       ! derived quantities checked before use, naming what they come from (contact2d_checks)
@@ -157,11 +174,67 @@ contains
       stat = 0
       errmsg = ''
    contains
+      !> model%bodies and model%body_of from the deck's &body groups; refused: a surface the mesh
+      !> lacks (its names listed), an element in two bodies, an element in none.
+      subroutine build_bodies()
+         integer :: b, k, e, sidx
+         type(material_t) :: mat
+         character(len=:), allocatable :: where
+         allocate (model%bodies(size(deck%body)), model%body_of(model%mesh%nel))
+         model%body_of = 0
+         do b = 1, size(deck%body)
+            associate (c => deck%body(b))
+               where = deck%path//':'//str(c%line)//": &body (#"//str(b)//") '"//trim(c%name)//"': "
+               sidx = model%mesh%surface_index(c%surface)
+               if (sidx == 0) then
+                  stat = 1
+                  errmsg = where//"surface = '"//trim(c%surface)//"' is not a physical surface of "// &
+                           trim(deck%mesh%file)//'; it has '//model%mesh%surface_list()
+                  return
+               end if
+               do k = model%mesh%sstart(sidx), model%mesh%sstart(sidx + 1) - 1
+                  e = model%mesh%selem(k)
+                  if (model%body_of(e) /= 0 .and. model%body_of(e) /= b) then
+                     stat = 1
+                     errmsg = where//'element '//str(model%mesh%id_of(e))//' of surface '''//trim(c%surface)// &
+                              ''' is also in body '''//trim(deck%body(model%body_of(e))%name)// &
+                              '''; an element belongs to one body'
+                     return
+                  end if
+                  model%body_of(e) = b
+               end do
+               call material_init(mat, c%young, c%poisson, c%density, stat, errmsg)
+               if (stat /= 0) then
+                  errmsg = where//errmsg
+                  return
+               end if
+               call body_init(model%bodies(b), trim(c%name), pack([(e, e=1, model%mesh%nel)], model%body_of == b), mat)
+            end associate
+         end do
+         e = findloc(model%body_of, 0, dim=1)
+         if (e > 0) then
+            stat = 1
+            errmsg = deck%path//': element '//str(model%mesh%id_of(e))//' of '//trim(deck%mesh%file)//' is in no body ('// &
+                     str(count(model%body_of == 0))//' element(s) are): give every element a &body (surfaces: '// &
+                     model%mesh%surface_list()//')'
+            return
+         end if
+         do b = 1, size(model%bodies)
+            if (size(model%bodies(b)%elements) == 0) then
+               stat = 1
+               errmsg = deck%path//':'//str(deck%body(b)%line)//": &body (#"//str(b)//") '"//trim(deck%body(b)%name)// &
+                        "': surface = '"//trim(deck%body(b)%surface)//"' holds no quadrilateral"
+               return
+            end if
+         end do
+         stat = 0
+      end subroutine build_bodies
+
       subroutine build_contact()
          integer, allocatable :: nodes(:)
          type(contact_config_t) :: cfg
          character(len=:), allocatable :: obstacle, warning
-         integer :: g
+         integer :: g, slave
          real(wp) :: d1, d2
          associate (c => deck%contact)
             if (len_trim(c%boundary) > 0) then
@@ -189,6 +262,10 @@ contains
                call model%mesh%select_nodes(edge_id(c%edge), [c%xmin, c%xmax, c%ymin, c%ymax], nodes)
                if (c%direction == 'cw') nodes = nodes(size(nodes):1:-1)
             end if
+            ! the slave body: every edge of Gamma_c in one body (contact between bodies and
+            ! several &contact groups come later; docs/deck.md &body)
+            call chain_body(nodes, slave)
+            if (stat /= 0) return
             call c%shape%make(cfg%obstacle)
             cfg%origin = c%origin
             cfg%multiplier = c%multiplier
@@ -213,56 +290,103 @@ contains
          if (model%contact%active) then
             deallocate (model%pairs)
             allocate (model%pairs(1))
-            call pair_init(model%pairs(1), 1, model%contact%node, obstacle)
+            call pair_init(model%pairs(1), slave, model%contact%node, obstacle)
          end if
       end subroutine build_contact
 
-      !> The body's rigid motions (docs/static.md "Bodies held by contact"): those its supports
-      !> leave free are kept (model%unsupported); one that contact cannot stop either (no normal,
-      !> nor a tangent where the law carries friction, does work on it) is a mechanism: refused
-      !> when a load drives it or the static engine runs (K u = f has no unique solution), a
-      !> warning for the explicit engine otherwise (nothing moves the body along it).
+      !> The rigid motions of each connected part of the mesh (a body, or bodies bonded where they
+      !> share nodes; docs/static.md "Bodies held by contact"): those its supports leave free are
+      !> noted (model%unsupported: the static engine then takes its proximal path); one that
+      !> contact cannot stop either (no normal, nor a tangent where the law carries friction, does
+      !> work on it) is a mechanism: refused when a load drives it or the static engine runs
+      !> (K u = f has no unique solution), a warning for the explicit engine otherwise (nothing
+      !> moves the part along it).
       subroutine rigid_check()
-         type(rigid_t) :: mech, mech_friction
-         integer, allocatable :: nodes(:), cnode(:)
+         integer, allocatable :: root(:), nodes(:), tsel(:)
+         integer :: k, e, r, ra, rb
+         logical, allocatable :: seen(:)
+
+         ! connected parts: union of the nodes of every element (each root the smallest node)
+         allocate (root(model%mesh%nnode))
+         root = [(k, k=1, model%mesh%nnode)]
+         do e = 1, model%mesh%nel
+            do k = 2, 4
+               ra = find(root, model%mesh%conn(1, e))
+               rb = find(root, model%mesh%conn(k, e))
+               root(max(ra, rb)) = min(ra, rb)
+            end do
+         end do
+         do k = 1, model%mesh%nnode
+            root(k) = find(root, k)
+         end do
+         allocate (seen(model%mesh%nnode))
+         seen = .false.
+         do e = 1, model%mesh%nel
+            r = root(model%mesh%conn(1, e))
+            if (seen(r)) cycle
+            seen(r) = .true.
+            nodes = pack([(k, k=1, model%mesh%nnode)], root == r)
+            tsel = pack([(k, k=1, size(model%load%tnode))], root(model%load%tnode) == r)
+            call part_check(nodes, model%body_of(e), tsel)
+            if (stat /= 0) return
+         end do
+      end subroutine rigid_check
+
+      !> The root of node i's part (rigid_check), halving the path on the way.
+      integer function find(root, i) result(f)
+         integer, intent(inout) :: root(:)
+         integer, intent(in) :: i
+         f = i
+         do while (root(f) /= f)
+            root(f) = root(root(f))
+            f = root(f)
+         end do
+      end function find
+
+      !> rigid_check for one connected part: its nodes, the body that names it, its load entries.
+      subroutine part_check(nodes, body, tsel)
+         integer, intent(in) :: nodes(:), body, tsel(:)
+         type(rigid_t) :: mech, mech_friction, unsupported
+         integer, allocatable :: cnode(:)
          real(wp), allocatable :: cn(:, :), ctan(:, :), unit_fn(:), lim(:)
-         logical, allocatable :: used(:), carries(:)
+         logical, allocatable :: carries(:), inpart(:)
          real(wp) :: none(2, 0)
          character(len=:), allocatable :: what, remedy
          logical :: drives
          integer :: k
 
-         allocate (used(model%mesh%nnode))
-         used = .false.
-         used(reshape(model%mesh%conn(:, model%bodies(1)%elements), [4*size(model%bodies(1)%elements)])) = .true.
-         nodes = pack([(k, k=1, model%mesh%nnode)], used)
          ! the supports alone
          call rigid_free_motions(model%mesh%x, nodes, model%load%free, [integer ::], none, none, [logical ::], &
-                                 model%unsupported, stat)
+                                 unsupported, stat)
          if (stat /= 0) then
-            errmsg = deck%path//': LAPACK dsyev failed on the rigid motions of the body'
+            errmsg = deck%path//": LAPACK dsyev failed on the rigid motions of body '"//model%bodies(body)%name//"'"
             return
          end if
-         if (model%unsupported%nfree == 0) return
+         if (unsupported%nfree == 0) return
+         if (model%unsupported%nfree == 0) model%unsupported = unsupported
          ! the supports and contact: normals, and tangents where the law carries a tangential
-         ! force under a unit normal force
+         ! force under a unit normal force (the contact nodes of this part only)
+         allocate (inpart(model%mesh%nnode))
+         inpart = .false.
+         inpart(nodes) = .true.
          if (model%contact%active) then
-            cnode = model%contact%node
-            cn = model%contact%normal
-            ctan = model%contact%tangent
-            allocate (carries(size(cnode)), unit_fn(size(cnode)), lim(size(cnode)))
+            cnode = pack(model%contact%node, inpart(model%contact%node))
+            cn = model%contact%normal(:, pack([(k, k=1, model%contact%nc)], inpart(model%contact%node)))
+            ctan = model%contact%tangent(:, pack([(k, k=1, model%contact%nc)], inpart(model%contact%node)))
+            allocate (carries(size(cnode)))
             carries = .false.
-            if (model%contact%friction) then
+            if (model%contact%friction .and. size(cnode) > 0) then
+               allocate (lim(model%contact%nc), unit_fn(model%contact%nc))
                unit_fn = 1
                call model%contact%law%limits(unit_fn, unit_fn, lim)
-               carries = lim > 0
+               carries = pack(lim, inpart(model%contact%node)) > 0
             end if
          else
             allocate (cnode(0), cn(2, 0), ctan(2, 0), carries(0))
          end if
          call rigid_free_motions(model%mesh%x, nodes, model%load%free, cnode, cn, ctan, carries, mech, stat)
          if (stat /= 0) then
-            errmsg = deck%path//': LAPACK dsyev failed on the rigid motions of the body'
+            errmsg = deck%path//": LAPACK dsyev failed on the rigid motions of body '"//model%bodies(body)%name//"'"
             return
          end if
          if (mech%nfree == 0) return
@@ -278,11 +402,11 @@ contains
             end if
          end if
          stat = 0
-         what = "body '"//model%bodies(1)%name//"' is free to "//rigid_describe(mech, mech%motion(:, 1))
+         what = "body '"//model%bodies(body)%name//"' is free to "//rigid_describe(mech, mech%motion(:, 1))
          drives = .false.
          do k = 1, mech%nfree
-            drives = drives .or. rigid_drive(mech, mech%motion(:, k), model%mesh%x, model%load%tnode, &
-                                             model%load%tcomp, model%load%tcurve, model%load%tweight)
+            drives = drives .or. rigid_drive(mech, mech%motion(:, k), model%mesh%x, model%load%tnode(tsel), &
+                                             model%load%tcomp(tsel), model%load%tcurve(tsel), model%load%tweight(tsel))
          end do
          if (drives .or. deck%solver%method == 'static' .or. deck%solver%compare_static) then
             stat = 1
@@ -291,7 +415,40 @@ contains
             call model%warnings%add(what//' (no support and no contact stops it); no load drives it, so the '// &
                                     'explicit engine runs it, the static engine would refuse it; '//remedy)
          end if
-      end subroutine rigid_check
+      end subroutine part_check
+
+      !> The body of the chain `nodes` (consecutive nodes are the ends of one element edge): the
+      !> body of the elements holding its edges; stat = 1 when they are of several bodies.
+      subroutine chain_body(nodes, slave)
+         integer, intent(in) :: nodes(:)
+         integer, intent(out) :: slave
+         integer, allocatable :: adj_start(:), adj_elem(:)
+         integer :: i, k, e, b
+         slave = 1
+         stat = 0
+         if (size(model%bodies) == 1) return
+         call node_elements(model%mesh%conn, model%mesh%nnode, adj_start, adj_elem)
+         slave = 0
+         do i = 1, size(nodes) - 1
+            do k = adj_start(nodes(i)), adj_start(nodes(i) + 1) - 1
+               e = adj_elem(k)
+               if (.not. any(model%mesh%conn(:, e) == nodes(i + 1))) cycle
+               b = model%body_of(e)
+               if (slave == 0) slave = b
+               if (b /= slave) then
+                  stat = 1
+                  errmsg = deck%path//": contact:boundary = '"//trim(deck%contact%boundary)//"' lies on bodies '"// &
+                           model%bodies(slave)%name//"' and '"//model%bodies(b)%name// &
+                           "'; a contact boundary lies on one body"
+                  return
+               end if
+            end do
+         end do
+         ! a chain of one node (no edge): the lowest body of that node's elements
+         if (slave == 0 .and. size(nodes) > 0) &
+            slave = minval(model%body_of(adj_elem(adj_start(nodes(1)):adj_start(nodes(1) + 1) - 1)))
+         if (slave == 0) slave = 1
+      end subroutine chain_body
 
       subroutine add_edge_load(cfg, group, k)
          type(edge_load_cfg_t), intent(in) :: cfg

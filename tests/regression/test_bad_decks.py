@@ -185,6 +185,11 @@ CASES = [
      ["--static", "--set", "dirichlet#1:component='x'", "--set", "dirichlet#3:component='x'",
       "--set", "dirichlet#3:values=0"],
      r"body 'body' is free to translate along y: no support and no contact stops it; add a &dirichlet$"),
+    # each separate body is checked on its own: the right block of two (no shared node, no
+    # contact) without its x support is a mechanism of that body, named
+    ("mechanism_second_body", "bad_decks/separate_right_free.nml", ["--static"],
+     r"separate_right_free\.nml: body 'right' is free to translate along x: no support and no contact "
+     r"stops it; add a &dirichlet$"),
 ]
 
 # Bytes of the output file that already exists in the 'existing_output' case (not HDF5 on

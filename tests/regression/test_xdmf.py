@@ -27,7 +27,9 @@ structural check, with Python's xml module and h5py, of what ParaView's XDMF rea
   normal force acts (P1: F_n = 0; P0: mu_n = 0 and F_n = 0).
 Cases: Coulomb sliding P1 and P0 (3 snapshots written, one time sharing a step, one after the
 end), Lame's ring (Gmsh, curved Gamma_c, one snapshot), uniaxial compression (no contact: no
-polyline grids), patch compression (no snapshots: no temporal collection) and its static solve.
+polyline grids), patch compression (no snapshots: no temporal collection) and its static solve,
+the two bodies of inputs/bimaterial_bar.nml (static). Every case: the final grid's cell data
+`body` is /mesh/body and its point data `node_body` /mesh/node_body.
 """
 import os
 import re
@@ -185,6 +187,9 @@ def check_sidecar(t, run, snapshot_times, dt, contact, multiplier):
         final = sc.uniform(grids["final"])
         t.check_equal(run, "final: quadrilaterals, element_count", ("Quadrilateral", str(nel)),
                       (final[0], grids["final"].find("Topology").get("NumberOfElements")))
+        # the bodies (docs/output.md "/mesh"): cell data body, point data node_body
+        t.check_equal(run, "final: body (cell) and node_body (point) from /mesh", ({"/mesh/body"}, {"/mesh/node_body"}),
+                      (final[3].get("body"), final[3].get("node_body")))
         if contact:
             check_polyline(t, run, sc, f, grids["contact_final"], "/final/contact/", multiplier)
         if fields:
@@ -314,6 +319,11 @@ def body(t):
     run = t.run(t.deck("patch_compression_p0.nml"), "--static", name="patch_static")
     t.expect_exit(run, 0)
     check_sidecar(t, run, [], 0.0, True, "P0")
+    print()
+    print("## case bimaterial_static (two bodies: body and node_body of each)")
+    run = t.run(t.deck("bimaterial_bar.nml"), "--static", name="bimaterial_static")
+    t.expect_exit(run, 0)
+    check_sidecar(t, run, [], 0.0, False, "none")
 
 
 if __name__ == "__main__":

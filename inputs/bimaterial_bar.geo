@@ -1,0 +1,31 @@
+// Two blocks stacked in y, bonded along y = H1 (they share its nodes): the lower body
+// [0, L] x [0, H1], the upper body [0, L] x [H1, H1 + H2] (inputs/bimaterial_bar.nml).
+// Unstructured quadrilaterals (Mesh.Algorithm = 6 with recombination and subdivision; Debian's
+// Gmsh 4.8.4 crashes with Mesh.Algorithm = 8), different sizes in the two blocks.
+L = 1.0; H1 = 0.5; H2 = 0.4; h1 = 0.2; h2 = 0.15;
+Point(1) = {0, 0, 0, h1};
+Point(2) = {L, 0, 0, h1};
+Point(3) = {L, H1, 0, h2};
+Point(4) = {0, H1, 0, h2};
+Point(5) = {L, H1 + H2, 0, h2};
+Point(6) = {0, H1 + H2, 0, h2};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Line(5) = {3, 5};
+Line(6) = {5, 6};
+Line(7) = {6, 4};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Curve Loop(2) = {-3, 5, 6, 7};
+Plane Surface(2) = {2};
+Mesh.Algorithm = 6;
+Mesh.RecombineAll = 1;
+Mesh.SubdivisionAlgorithm = 1;
+Physical Curve("bottom") = {1};
+Physical Curve("top") = {6};
+Physical Curve("sides") = {2, 4, 5, 7};
+Physical Curve("interface") = {3};
+Physical Surface("lower") = {1};
+Physical Surface("upper") = {2};

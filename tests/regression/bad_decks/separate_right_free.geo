@@ -1,0 +1,33 @@
+// Two blocks side by side that share no node (separate bodies, inputs/separate_blocks.nml):
+// 'left' [0, 1] x [0, 0.5] and 'right' [1.25, 2.25] x [0, 0.6], with a gap of 0.25 between them.
+// Unstructured quadrilaterals (Mesh.Algorithm = 6 with recombination and subdivision; Debian's
+// Gmsh 4.8.4 crashes with Mesh.Algorithm = 8).
+h = 0.15;
+Point(1) = {0, 0, 0, h};
+Point(2) = {1, 0, 0, h};
+Point(3) = {1, 0.5, 0, h};
+Point(4) = {0, 0.5, 0, h};
+Point(5) = {1.25, 0, 0, h};
+Point(6) = {2.25, 0, 0, h};
+Point(7) = {2.25, 0.6, 0, h};
+Point(8) = {1.25, 0.6, 0, h};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Line(5) = {5, 6};
+Line(6) = {6, 7};
+Line(7) = {7, 8};
+Line(8) = {8, 5};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Curve Loop(2) = {5, 6, 7, 8};
+Plane Surface(2) = {2};
+Mesh.Algorithm = 6;
+Mesh.RecombineAll = 1;
+Mesh.SubdivisionAlgorithm = 1;
+Physical Curve("bottoms") = {1, 5};
+Physical Curve("tops") = {3, 7};
+Physical Curve("left_sides") = {4};
+Physical Surface("left") = {1};
+Physical Surface("right") = {2};
