@@ -227,7 +227,7 @@ contains
          end do
          call set_prescribed(load%npres, this%p_dof, load%pcurve, this%cnext, this%unew)
          ! 3. contact
-         if (contact%active) call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc)
+         if (contact%active) call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc, this%time)
          ! 4a. external work of the reactions (inertial and damping parts included) and loads,
          !     with the centred increment (u^(n+1) - u^(n-1))/2 = dt vbar
          !     (the reactions in special_correct below, the loads here, before it changes v)

@@ -184,6 +184,9 @@ contains
                if (c%direction == 'cw') nodes = nodes(size(nodes):1:-1)
             end if
             call c%shape%make(cfg%obstacle)
+            ! the obstacle's prescribed motion and where the step takes its geometry from
+            call c%motion%apply(cfg%obstacle)
+            cfg%current = c%motion%current()
             cfg%origin = c%origin
             cfg%multiplier = c%multiplier
             if (allocated(c%law)) allocate (cfg%friction, source=c%law)
