@@ -67,6 +67,10 @@ module contact2d_output
       type(h5file_t) :: file
       type(h5series_t) :: series(nseries)
       integer :: nactive = nseries_fixed   !< series written (nseries where the obstacle moves)
+      !> where the obstacle moves: /history/contact_slip_velocity, the contact nodes' slip
+      !> velocities relative to the obstacle, one row of ncontact values per sample (flattened)
+      type(h5series_t) :: slip_series
+      real(wp), allocatable :: slip_buf(:)   !< flush_samples rows of ncontact values
       integer(hid_t) :: history = -1
       integer(hid_t) :: fields = -1
       real(wp) :: buffer(flush_samples, nseries) = 0   !< one contiguous column per series
@@ -188,6 +192,12 @@ contains
          call this%series(k)%create(this%file, this%history, trim(history_names(k)), &
                                     trim(history_units(k)), flush_samples)
       end do
+      if (this%nactive == nseries) then
+         call this%slip_series%create(this%file, this%history, 'contact_slip_velocity', 'mm/s', &
+                                      flush_samples*model%contact%nc)
+         call this%file%attr(this%slip_series%id, 'ncontact', model%contact%nc)
+         allocate (this%slip_buf(flush_samples*model%contact%nc))
+      end if
       call this%file%flush()
       call system_clock(this%last_flush_clock)
       stat = this%file%stat
@@ -284,11 +294,20 @@ contains
       type(state_t), intent(inout) :: state
       real(wp), intent(in) :: residual
       integer(i8) :: now, rate
+      integer :: k
       real(wp) :: obstacle_now(3)
       obstacle_now = 0
       if (this%nactive == nseries) then
          obstacle_now(1:2) = state%contact%obstacle%displacement(state%time)
          obstacle_now(3) = state%contact%obstacle%angle(state%time)
+         ! slip velocity of the last step relative to the obstacle's surface point, along t_i:
+         ! v^(n+1/2).t_i - Delta s_i.t_i / dt (0 where a node sticks)
+         associate (c => state%contact, nc => state%contact%nc)
+            do k = 1, nc
+               this%slip_buf(this%nbuf*nc + k) = dot_product(state%v(:, c%node(k)), c%tangent(:, k))
+               if (state%dt > 0) this%slip_buf(this%nbuf*nc + k) = this%slip_buf(this%nbuf*nc + k) - c%ds(1, k)/state%dt
+            end do
+         end associate
       end if
       this%nbuf = this%nbuf + 1
       associate (c => state%contact)
@@ -350,6 +369,8 @@ contains
          do k = 1, this%nactive
             call this%series(k)%append(this%file, this%buffer(1:this%nbuf, k))
          end do
+         if (allocated(this%slip_buf)) &
+            call this%slip_series%append(this%file, this%slip_buf(1:this%nbuf*size(this%slip_buf)/flush_samples))
          this%nbuf = 0
       end if
       call this%file%flush()
@@ -375,6 +396,7 @@ contains
       do k = 1, this%nactive
          call this%series(k)%close(this%file)
       end do
+      call this%slip_series%close(this%file)
       call this%file%close_group(this%history)
       call this%file%close_group(this%fields)
       root = this%file%id

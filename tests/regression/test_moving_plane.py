@@ -17,6 +17,8 @@ Facts:
 - Energy: E_kin0 + W_ext + W_obstacle = E_kin + E_strain + D_friction + D_damping + W_normal to
   round-off at every sample (the obstacle's work is the balance's input).
 - The nodes stay on the moving plane: penetration at round-off.
+- The slip velocity relative to the plane (history contact_slip_velocity, one row of ncontact
+  values per sample) is -V at every node once the block rests on the sliding plane.
 """
 import math
 
@@ -49,6 +51,10 @@ def body(t):
         hist = {k: f["history/" + k][()] for k in (
             "time", "tangential_force_total", "normal_force_total", "obstacle_work", "obstacle_displacement_x",
             "obstacle_displacement_y", "energy_balance_error", "penetration_max", "friction_dissipation")}
+        slip_data = f["history/contact_slip_velocity"]
+        nc = int(slip_data.attrs["ncontact"])
+        slip_flat = slip_data[()]
+        ncontact = f["contact/nodes"].shape[0]
     time, ft, fn = hist["time"], hist["tangential_force_total"], hist["normal_force_total"]
 
     # -- the plane's displacement: the closed-form integral of its velocity curve ---------------
@@ -75,6 +81,14 @@ def body(t):
     t.check_close(run, "d(obstacle_work)/dt at the end = mu F_n V [mW]", MU_F * fn[-1] * V, power, rtol=1e-6,
                   reason="the block at rest on the sliding plane: power of the friction force mu F_n at speed V "
                   "(measured 2e-11)")
+
+    # -- the slip velocity along the interface (a space-time map: one row per sample) -----------
+    t.check_equal(run, "contact_slip_velocity: ncontact columns, one row per sample", (ncontact, len(time) * ncontact),
+                  (nc, slip_flat.size))
+    slip = slip_flat.reshape(len(time), nc)
+    t.check_close(run, "final contact_slip_velocity = -V at every node [mm/s]", np.full(nc, -V), slip[-1], rtol=1e-6,
+                  reason="the block at rest on the plane moving at +V: each node slips at -V relative to it "
+                  "(up to the block's residual motion; measured 3e-9)")
 
     # -- energy balance and penetration -----------------------------------------------------------
     t.check_le(run, "energy_balance_error at every sample", hist["energy_balance_error"], 1e-12,
