@@ -439,9 +439,9 @@ contains
          tn = 0
          if (present(time)) tn = time
          if (this%penalty) then
-            call update_geometry(this, u, tn, dt)
+            call update_geometry(this, u, tn, tn + dt, dt)
          else
-            call update_geometry(this, unew, tn + dt, dt)
+            call update_geometry(this, unew, tn + dt, tn + dt, dt)
          end if
       end if
       ! c/m_i changes only with c (the damping coefficient): kept between steps
@@ -650,19 +650,21 @@ contains
    end subroutine finish_nodes
 
    !> Geometry 'current' (docs/geometry.md): each contact node's position x_i + w_i (w = u~ at
-   !> t = t_(n+1), or u^n at t = t_n for the explicit penalty) projected onto the obstacle at t:
+   !> tp = t_(n+1), or u^n at tp = t_n for the explicit penalty) projected onto the obstacle at tp:
    !> gap g_i, normal n_i = -nu_i, tangent t_i; the stored gap becomes w_i . n_i + g_i, so that
    !> the step's d_i = w_i . n_i - gap_i = -g_i and, linearised about x + w, u^(n+1) . n_i - gap_i
    !> is the penetration at t_(n+1) (the kernels of the fixed geometry unchanged). The obstacle's
-   !> surface motion under each node (ds): its tangential part over [t - dt, t] for the stick
-   !> trial, and the centred displacement (s(t) - s(t - 2 dt))/2 for the work sums, of the
-   !> obstacle point at the node's closest point x + w - g nu. No allocation.
-   subroutine update_geometry(this, w, t, dt)
+   !> surface motion under each node (ds): its tangential part over the step [t - dt, t]
+   !> (t = t_(n+1)) for the stick trial, and the centred displacement (s(t) - s(t - 2 dt))/2 for
+   !> the work sums, of the obstacle point at the node's closest point x + w - g nu (carried to t
+   !> by the translation when tp < t). No allocation.
+   subroutine update_geometry(this, w, tp, t, dt)
       type(contact_t), intent(inout) :: this
       real(wp), intent(in) :: w(:, :)
-      real(wp), intent(in) :: t, dt
-      real(wp) :: d0(2), d1(2), d2(2), a0, a1, a2, x(2), g, nu(2), n(2), tg(2), xs(2), s1(2), s2(2)
+      real(wp), intent(in) :: tp, t, dt
+      real(wp) :: d0(2), d1(2), d2(2), dp(2), a0, a1, a2, x(2), g, nu(2), n(2), tg(2), xs(2), s1(2), s2(2)
       integer :: i, k
+      dp = this%obstacle%displacement(tp)
       d2 = this%obstacle%displacement(t)
       d1 = this%obstacle%displacement(t - dt)
       d0 = this%obstacle%displacement(t - 2*dt)
@@ -672,7 +674,7 @@ contains
       do i = 1, this%nc
          k = this%node(i)
          x = this%xref(:, i) + w(:, k)
-         call this%obstacle%project_at(d2, x, g, nu)
+         call this%obstacle%project_at(dp, x, g, nu)
          n = -nu
          tg = [-n(2), n(1)]
          this%normal(:, i) = n
@@ -682,7 +684,7 @@ contains
          this%rec(rec_tx:rec_ty, i) = tg
          this%rec(rec_gap, i) = this%gap(i)
          if (this%obstacle%moving) then
-            xs = x - g*nu
+            xs = x - g*nu + (d2 - dp)
             s1 = this%obstacle%surface_displacement(d1, d2, a2 - a1, xs)
             s2 = this%obstacle%surface_displacement(d0, d2, a2 - a0, xs)
             this%ds(1, i) = s1(1)*tg(1) + s1(2)*tg(2)
