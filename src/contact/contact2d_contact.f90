@@ -11,7 +11,8 @@
 !> them (update_geometry), and friction acts on the slip relative to the obstacle's surface;
 !> weights w_i = integral of phi_i, the friction law made from them (its limits: Tresca s_i w_i),
 !> and for P0 the coupling D (tridiagonal) and the LCP matrix D M^-1 D^T (five bands). Forces: F_n, F_t per node; the force on the body
-!> is -F_n n_i - F_t t_i. The step reads these per-node arrays only, never the obstacle's shape.
+!> is -F_n n_i - F_t t_i. With 'initial' the step reads these per-node arrays only, never the
+!> obstacle's shape; with 'current' update_geometry refills them from the obstacle first.
 module contact2d_contact
    use contact2d_kinds, only: wp, i8
    use contact2d_strings, only: str
