@@ -13,7 +13,8 @@ further than its own size (docs/output.md, "Validity warnings").
   with material:young in GPa (70 instead of 7e4) the strain warning.
 - every shipped deck (inputs/*.nml) at its shipped settings warns about neither: the static
   engine's end state where the deck allows it (the same discrete problem), the explicit run for
-  the impact and penalty decks and the rotated patch (whose static problem is singular).
+  the impact and penalty decks, the rotated patch (whose static problem is singular) and the
+  moving-obstacle decks (which the static engine refuses).
 """
 import glob
 import math
@@ -85,7 +86,9 @@ def body(t):
 
     # ---- 3. no shipped deck is warned about --------------------------------------------------
     explicit_only = ("impact_bar_p1", "impact_bar_p0", "impact_bar_penalty", "patch_compression_penalty",
-                     "patch_rotated_p1", "patch_rotated_p0")
+                     "patch_rotated_p1", "patch_rotated_p0",
+                     # a moving obstacle: the static engine refuses it (docs/geometry.md)
+                     "block_on_moving_plane_p1", "block_on_moving_plane_p0", "cylinder_sliding_layer")
     decks = sorted(glob.glob(os.path.join(t.inputs, "*.nml")))
     t.check(t.workdir, "shipped decks found", len(decks) >= 20, ">= 20", len(decks))
     for deck in decks:
