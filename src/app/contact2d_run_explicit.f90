@@ -95,7 +95,7 @@ contains
                        deck%solver%damping_interval)
       ! the guard watches only a step taken from the power estimate (contact2d_timestep)
       solver%guard = model%dt_guarded
-      solver%guard_after = model%load%end_time()
+      solver%guard_after = loading_end(model)
       if (any(deck%initial%velocity /= 0)) call initial_velocity_apply(solver, model%load%free, deck%initial%velocity)
       call state%init(model%contact, model%dt)
       call state_from_explicit(state, solver)
@@ -150,7 +150,7 @@ contains
       t_output = 0
       clock_last_progress = clock1
       interactive = deck%output%progress .and. isatty(output_unit)
-      t_load_end = model%load%end_time()
+      t_load_end = loading_end(model)
       done = .false.
       state%status = 'not converged'
       if (.not. deck%convergence_test) state%status = trim(merge('dynamic            ', 'no convergence test', deck%dynamic))
@@ -371,6 +371,16 @@ contains
       state%damping_dissipation = solver%damping_dissipation
       state%initial_kinetic = solver%initial_kinetic
    end subroutine state_from_explicit
+
+   !> The end of the last stage of the loads and of a moving obstacle's motion (docs/geometry.md):
+   !> the convergence test and the growing-mode guard start there [s].
+   real(wp) function loading_end(model) result(t)
+      type(model_t), intent(in) :: model
+      t = model%load%end_time()
+      if (allocated(model%contact%obstacle)) then
+         if (model%contact%obstacle%moving) t = max(t, model%contact%obstacle%velocity(1)%end_time())
+      end if
+   end function loading_end
 
    !> The step at which the run reaches t_end: the first step after the current one whose time
    !> t_k = time0 + (k - step0) dt (as the solver forms it) is >= t_end (1 - 1e-12), the test

@@ -3,12 +3,16 @@
 !> (SPEC sections 3, 4, 6; the paper's (10)-(13) and (17); Coulomb and the friction-law seam:
 !> docs/friction.md), or a penalty for comparison.
 !>
-!> Geometry is fixed and precomputed: contact nodes x_0..x_N ordered by abscissa; per node the
-!> gap g_i and the body's outward normal n_i = -nu_i from the node's closest point on the
-!> obstacle in the initial configuration (small deformation, docs/geometry.md), t_i = (-n2, n1);
+!> Geometry (docs/geometry.md): contact nodes x_0..x_N ordered by abscissa; per node the gap
+!> g_i and the body's outward normal n_i = -nu_i from the node's closest point on the obstacle,
+!> t_i = (-n2, n1). With geometry 'initial' (a fixed obstacle, small deformation) they are
+!> found once, in the initial configuration; with 'current' (finite sliding, a moving obstacle)
+!> each step projects the predicted position x + u~ onto the obstacle at t_(n+1) and refreshes
+!> them (update_geometry), and friction acts on the slip relative to the obstacle's surface;
 !> weights w_i = integral of phi_i, the friction law made from them (its limits: Tresca s_i w_i),
 !> and for P0 the coupling D (tridiagonal) and the LCP matrix D M^-1 D^T (five bands). Forces: F_n, F_t per node; the force on the body
-!> is -F_n n_i - F_t t_i. The step reads these per-node arrays only, never the obstacle's shape.
+!> is -F_n n_i - F_t t_i. With 'initial' the step reads these per-node arrays only, never the
+!> obstacle's shape; with 'current' update_geometry refills them from the obstacle first.
 module contact2d_contact
    use contact2d_kinds, only: wp, i8
    use contact2d_strings, only: str
@@ -43,6 +47,9 @@ module contact2d_contact
       class(friction_input_t), allocatable :: friction
       character(len=8) :: method = 'lagrange'      !< 'lagrange' | 'penalty'
       real(wp) :: penalty_stiffness = 0            !< k_p [MPa/mm]
+      !> gaps and normals in the current configuration, refreshed each step (docs/geometry.md);
+      !> else in the initial one, fixed (a moving obstacle needs .true.: the deck's check)
+      logical :: current = .false.
    end type contact_config_t
 
    !> A candidate contact boundary and the multipliers of the last step.
@@ -91,6 +98,19 @@ module contact2d_contact
       real(wp) :: normal_work = 0           !< sum F_n,i Delta d_i [mJ]
       real(wp) :: normal_total = 0          !< sum of F_n [N]
       real(wp) :: tangential_total = 0      !< sum of F_t [N]
+      !> work done on the body by the contact forces through the obstacle's motion [mJ]:
+      !> sum F_c,i . Delta s_i, Delta s_i the centred displacement of the obstacle's surface
+      !> point under node i (0 for a fixed obstacle)
+      real(wp) :: obstacle_work = 0
+      !> geometry 'current': the gaps, normals and tangents are refreshed each step
+      logical :: current = .false.
+      !> the obstacle (geometry 'current' only: the step projects onto it)
+      class(obstacle_t), allocatable :: obstacle
+      real(wp), allocatable :: xref(:, :)   !< initial positions of the contact nodes (2, nc) [mm]
+      !> the obstacle's surface motion under each node in this step (3, nc) [mm]: its tangential
+      !> part over [t_n, t_(n+1)], then the centred displacement (s(t_(n+1)) - s(t_(n-1)))/2;
+      !> zeros for a fixed obstacle
+      real(wp), allocatable :: ds(:, :)
       integer(i8) :: clock_ticks = 0        !< time spent in enforce (system_clock ticks)
       !> per-node constants side by side for the step's loop: rec(rec_*, i) = n_i, t_i, g_i, m_i,
       !> c/m_i (of the step coefficient c_last), 1 where a zero tangential limit means slip
@@ -146,6 +166,11 @@ contains
       call init_geometry(this, cfg, x, free, mass, cand_gap, keep, tol, stat, errmsg)
       if (stat /= 0) return
 
+      this%current = cfg%current
+      if (this%current) allocate (this%obstacle, source=cfg%obstacle)
+      this%xref = x(:, this%node)
+      allocate (this%ds(3, this%nc))
+      this%ds = 0
       allocate (this%rec(nrec, this%nc))
       this%rec(rec_nx:rec_ny, :) = this%normal
       this%rec(rec_tx:rec_ty, :) = this%tangent
@@ -393,7 +418,7 @@ contains
    !> Two passes over the contact nodes: the normal forces (node by node for P1 and penalty, the
    !> LCP for P0), then, after the friction law's limits, one pass for the tangential forces, the
    !> update, energies, diagnostics and status (docs/performance.md, "The contact step").
-   subroutine contact_enforce(this, u, v, unew, c, dt, fc)
+   subroutine contact_enforce(this, u, v, unew, c, dt, fc, time)
       class(contact_t), intent(inout) :: this
       real(wp), intent(in) :: u(:, :)      !< u^n [mm]
       real(wp), intent(in) :: v(:, :)      !< v^(n-1/2) [mm/s]
@@ -401,13 +426,25 @@ contains
       real(wp), intent(in) :: c            !< dt^2 / (1 + alpha dt / 2) [s^2]
       real(wp), intent(in) :: dt           !< [s]
       real(wp), intent(inout) :: fc(:, :)  !< contact force on the body [N]
+      real(wp), intent(in), optional :: time  !< t_n [s] (geometry 'current'; absent: 0)
       integer(i8) :: t0, t1
-      real(wp) :: rc
+      real(wp) :: rc, tn
       logical :: cells
 
       call system_clock(t0)
       rc = 1/c
       cells = this%multiplier == multiplier_p0 .and. .not. this%penalty
+      ! geometry 'current': gaps, normals and the obstacle's surface motion of this step, from
+      ! x + u~ at t_(n+1) (the penalty's force is explicit: from x + u^n at t_n)
+      if (this%current) then
+         tn = 0
+         if (present(time)) tn = time
+         if (this%penalty) then
+            call update_geometry(this, u, tn, tn + dt, dt)
+         else
+            call update_geometry(this, unew, tn + dt, tn + dt, dt)
+         end if
+      end if
       ! c/m_i changes only with c (the damping coefficient): kept between steps
       if (c /= this%c_last) then
          this%rec(rec_cmass, :) = c/this%mass
@@ -506,17 +543,21 @@ contains
       call finish_nodes(this%nc, this%node, this%rec, this%fn, this%slip_limit, this%mu, this%ft, this%stuck, &
                         this%dtil, this%last_status, this%friction, this%fn_touches, cells, &
                         this%limits_fixed .and. this%multiplier == multiplier_p1 .and. .not. this%penalty, &
-                        u, v, unew, fc, dt, rc, this%stick_increment_max, this%penetration_max, this%status_changes, &
-                        this%normal_work, this%friction_dissipation, this%normal_total, this%tangential_total)
+                        this%ds, u, v, unew, fc, dt, rc, this%stick_increment_max, this%penetration_max, &
+                        this%status_changes, this%normal_work, this%friction_dissipation, this%obstacle_work, &
+                        this%normal_total, this%tangential_total)
    end subroutine finish_pass
 
    !> The loop of finish_pass on plain arrays. rec(:, i): the per-node constants (rec_* indices).
+   !> ds(:, i): the obstacle's surface motion under node i (contact_t%ds): stick keeps the node
+   !> on the surface point, friction dissipates on the slip relative to it, and the contact
+   !> force's work through it is the obstacle's work on the body (docs/geometry.md).
    subroutine finish_nodes(nc, node, rec, fnv, limv, mu, ftv, stuckv, dtil, last_status, friction, fn_touches, cells, &
-                           p1_here, u, v, unew, fc, dt, rc, sim_max, pen_max, status_changes, normal_work, &
-                           friction_dissipation, &
+                           p1_here, ds, u, v, unew, fc, dt, rc, sim_max, pen_max, status_changes, normal_work, &
+                           friction_dissipation, obstacle_work, &
                            normal_total, tangential_total)
       integer, intent(in) :: nc, node(nc)
-      real(wp), intent(in) :: rec(nrec, nc), limv(nc), mu(nc)
+      real(wp), intent(in) :: rec(nrec, nc), limv(nc), mu(nc), ds(3, nc)
       real(wp), intent(inout) :: fnv(nc)
       real(wp), intent(inout) :: ftv(nc)
       logical, intent(inout) :: stuckv(nc)
@@ -528,11 +569,11 @@ contains
       real(wp), intent(in) :: u(2, *), v(2, *)
       real(wp), intent(inout) :: unew(2, *), fc(2, *)
       real(wp), intent(in) :: dt, rc
-      real(wp), intent(inout) :: sim_max, pen_max, normal_work, friction_dissipation
+      real(wp), intent(inout) :: sim_max, pen_max, normal_work, friction_dissipation, obstacle_work
       integer(i8), intent(inout) :: status_changes
       real(wp), intent(out) :: normal_total, tangential_total
       integer :: i, k, st
-      real(wp) :: nx, ny, tx, ty, trial, lim, fn, ft, fx, fy, dx, dy, cm, d, fnsum, ftsum, wn, wf, sim, pen
+      real(wp) :: nx, ny, tx, ty, trial, lim, fn, ft, fx, fy, dx, dy, cm, d, fnsum, ftsum, wn, wf, wo, sim, pen
       integer(i8) :: changes
       logical :: stuck, touching
 
@@ -543,6 +584,7 @@ contains
       ftsum = 0
       wn = 0
       wf = 0
+      wo = 0
       do i = 1, nc
          k = node(i)
          nx = rec(rec_nx, i)
@@ -557,7 +599,7 @@ contains
          end if
          lim = limv(i)
          if (friction) then
-            trial = rec(rec_mass, i)*((unew(1, k) - u(1, k))*tx + (unew(2, k) - u(2, k))*ty)*rc
+            trial = rec(rec_mass, i)*(((unew(1, k) - u(1, k))*tx + (unew(2, k) - u(2, k))*ty) - ds(1, i))*rc
             ! sign(min(|trial|, lim), trial), written so that no spilled value is reloaded wider
             stuck = abs(trial) < lim
             ft = merge(trial, sign(lim, trial), stuck)
@@ -576,9 +618,10 @@ contains
          fc(2, k) = fy
          dx = unew(1, k) - u(1, k)
          dy = unew(2, k) - u(2, k)
-         if (stuck) sim = max(sim, abs(dx*tx + dy*ty))
-         dx = 0.5_wp*(dx + dt*v(1, k))
-         dy = 0.5_wp*(dy + dt*v(2, k))
+         if (stuck) sim = max(sim, abs((dx*tx + dy*ty) - ds(1, i)))
+         wo = wo + (fx*ds(2, i) + fy*ds(3, i))
+         dx = 0.5_wp*(dx + dt*v(1, k)) - ds(2, i)
+         dy = 0.5_wp*(dy + dt*v(2, k)) - ds(3, i)
          wn = wn + fn*(dx*nx + dy*ny)
          wf = wf + ft*(dx*tx + dy*ty)
          fnsum = fnsum + fn
@@ -599,12 +642,57 @@ contains
       end do
       normal_work = normal_work + wn
       friction_dissipation = friction_dissipation + wf
+      obstacle_work = obstacle_work + wo
       normal_total = fnsum
       tangential_total = ftsum
       sim_max = sim
       pen_max = pen
       status_changes = status_changes + changes
    end subroutine finish_nodes
+
+   !> Geometry 'current' (docs/geometry.md): each contact node's position x_i + w_i (w = u~ at
+   !> tp = t_(n+1), or u^n at tp = t_n for the explicit penalty) projected onto the obstacle at tp:
+   !> gap g_i, normal n_i = -nu_i, tangent t_i; the stored gap becomes w_i . n_i + g_i, so that
+   !> the step's d_i = w_i . n_i - gap_i = -g_i and, linearised about x + w, u^(n+1) . n_i - gap_i
+   !> is the penetration at t_(n+1) (the kernels of the fixed geometry unchanged). The obstacle's
+   !> surface motion under each node (ds): its tangential part over the step [t - dt, t]
+   !> (t = t_(n+1)) for the stick trial, and the centred displacement (s(t) - s(t - 2 dt))/2 for
+   !> the work sums, of the obstacle point at the node's closest point x + w - g nu (carried to t
+   !> by the translation when tp < t). No allocation.
+   subroutine update_geometry(this, w, tp, t, dt)
+      type(contact_t), intent(inout) :: this
+      real(wp), intent(in) :: w(:, :)
+      real(wp), intent(in) :: tp, t, dt
+      real(wp) :: d0(2), d1(2), d2(2), dp(2), a0, a1, a2, x(2), g, nu(2), n(2), tg(2), xs(2), s1(2), s2(2)
+      integer :: i, k
+      dp = this%obstacle%displacement(tp)
+      d2 = this%obstacle%displacement(t)
+      d1 = this%obstacle%displacement(t - dt)
+      d0 = this%obstacle%displacement(t - 2*dt)
+      a2 = this%obstacle%angle(t)
+      a1 = this%obstacle%angle(t - dt)
+      a0 = this%obstacle%angle(t - 2*dt)
+      do i = 1, this%nc
+         k = this%node(i)
+         x = this%xref(:, i) + w(:, k)
+         call this%obstacle%project_at(dp, x, g, nu)
+         n = -nu
+         tg = [-n(2), n(1)]
+         this%normal(:, i) = n
+         this%tangent(:, i) = tg
+         this%gap(i) = (w(1, k)*n(1) + w(2, k)*n(2)) + g
+         this%rec(rec_nx:rec_ny, i) = n
+         this%rec(rec_tx:rec_ty, i) = tg
+         this%rec(rec_gap, i) = this%gap(i)
+         if (this%obstacle%moving) then
+            xs = x - g*nu + (d2 - dp)
+            s1 = this%obstacle%surface_displacement(d1, d2, a2 - a1, xs)
+            s2 = this%obstacle%surface_displacement(d0, d2, a2 - a0, xs)
+            this%ds(1, i) = s1(1)*tg(1) + s1(2)*tg(2)
+            this%ds(2:3, i) = 0.5_wp*s2
+         end if
+      end do
+   end subroutine update_geometry
 
    !> Status per contact node (SPEC section 3): 0 separated, 1 stick, 2 slip.
    subroutine contact_status(this, status)

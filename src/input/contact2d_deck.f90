@@ -51,7 +51,7 @@ module contact2d_deck
 
    !> The variables of each group (of group_names), from the group modules (test_deck checks
    !> that each is accepted); for suggestions.
-   character(len=*), parameter :: group_variables(9) = [character(len=320) :: &
+   character(len=*), parameter :: group_variables(9) = [character(len=420) :: &
       mesh_variables, material_variables, edge_load_variables, edge_load_variables, contact_variables, &
       solver_variables, output_variables, initial_variables, body_variables]
 
@@ -539,6 +539,7 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       real(wp) :: last_stage
+      logical :: t_end_default
       integer :: i
 
       stat = 1
@@ -575,6 +576,7 @@ contains
       end do
       ! no &dirichlet is fine where contact holds the body: the model's rigid-motion check
       ! (contact2d_rigid, docs/static.md "Bodies held by contact") refuses a free mechanism
+      t_end_default = deck%solver%t_end == 0
       if (deck%solver%t_end == 0) then
          deck%solver%t_end = 10*last_stage
       else if (deck%solver%t_end < last_stage) then
@@ -592,6 +594,21 @@ contains
                      'not the penalty one'
             return
          end if
+         ! a moving obstacle, or the current configuration: the static engine solves one
+         ! equilibrium in the initial configuration, and the quasi-static answer of a dragged
+         ! frictional contact depends on the path (docs/geometry.md "Moving obstacles")
+         if (deck%contact%motion%current() .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
+            errmsg = 'solver:'//trim(merge("method = 'static'", 'compare_static   ', deck%solver%method == 'static'))// &
+                     ' refuses '//trim(merge("a moving obstacle (contact:obstacle_motion_times)", &
+                                             "contact:geometry = 'current'                     ", &
+                                             deck%contact%motion%moving()))// &
+                     ': the static engine solves in the initial configuration, and a dragged frictional '// &
+                     'contact has no single quasi-static answer (it depends on the path)'
+            return
+         end if
+         ! the default end time counts the obstacle's motion stages as load stages
+         if (t_end_default .and. deck%contact%motion%moving()) deck%solver%t_end = &
+            10*max(last_stage, deck%contact%motion%obstacle_motion_times(deck%contact%motion%nstage))
       end if
       ! the obstacles' and friction laws' values under the names the model reads
       call contact_cfg_publish(deck%contact)

@@ -12,6 +12,7 @@ module contact2d_deck_contact
    use contact2d_obstacle_input, only: obstacle_input_t, obstacle_input_box_t
    use contact2d_obstacle_plane_input, only: plane_input_t, plane_names
    use contact2d_obstacle_circle_input, only: circle_input_t, circle_names
+   use contact2d_obstacle_motion_input, only: motion_input_t, motion_names
    implicit none
    private
    public :: contact_cfg_t, contact_variables, contact_cfg_read, contact_cfg_not_finite
@@ -27,7 +28,7 @@ module contact2d_deck_contact
    !> The variables of &contact (the group's own, the obstacles' and the friction laws'), for
    !> the did-you-mean of a misspelled name.
    character(len=*), parameter :: contact_variables = &
-      'edge boundary xmin xmax ymin ymax obstacle '//obstacle_variables//' '// &
+      'edge boundary xmin xmax ymin ymax obstacle '//obstacle_variables//' '//motion_names//' '// &
       'origin direction multiplier friction '//friction_variables//' method penalty_stiffness'
 
    !> &contact: a candidate boundary against a rigid obstacle (SPEC section 3).
@@ -50,6 +51,8 @@ module contact2d_deck_contact
       !> the chosen shape's input (contact:obstacle), set once the deck is valid
       !> (contact_cfg_publish); the model makes the obstacle from it (obstacle_input_t%make)
       class(obstacle_input_t), allocatable :: shape
+      !> the obstacle's prescribed motion and the contact geometry (docs/geometry.md)
+      type(motion_input_t) :: motion
       !> every law's variables as read (friction_registry's order): a law's variables given
       !> with another law are refused by that law's module, so all are read and checked
       type(friction_input_box_t), allocatable :: laws(:)
@@ -160,6 +163,7 @@ contains
       do k = 1, size(cfg%shapes)
          if (cfg%shapes(k)%input%too_long(where, stat, errmsg)) return
       end do
+      if (cfg%motion%too_long(where, stat, errmsg)) return
       cfg%edge = edge; cfg%friction = friction; cfg%direction = direction; cfg%multiplier = multiplier
       cfg%method = method; cfg%boundary = boundary; cfg%obstacle = obstacle
    contains
@@ -167,6 +171,10 @@ contains
       subroutine read_one(name, records, prefix)
          character(len=*), intent(in) :: name, records(:), prefix
          integer :: k
+         if (cfg%motion%claims(name)) then
+            call cfg%motion%read(records, prefix, contact_variables, stat, errmsg)
+            return
+         end if
          do k = 1, size(cfg%shapes)
             if (cfg%shapes(k)%input%claims(name)) then
                call cfg%shapes(k)%input%read(records, prefix, contact_variables, stat, errmsg)
@@ -214,6 +222,7 @@ contains
             if (c%shapes(k)%input%not_finite(errmsg)) return
          end do
       end if
+      if (c%motion%not_finite(errmsg)) return
       if (check_finite('contact:origin', c%origin, errmsg)) return
       if (allocated(c%laws)) then
          do k = 1, size(c%laws)
@@ -235,6 +244,7 @@ contains
       if (len(errmsg) > 0) return
       c%edge = lower(c%edge)
       if (obstacle_refused(c, errmsg)) return
+      if (c%motion%validate(trim(c%obstacle), errmsg)) return
       c%direction = lower(c%direction)
       if (.not. any(c%direction == [character(len=4) :: 'ccw', 'cw'])) then
          errmsg = "contact:direction = '"//trim(c%direction)//"' is not one of 'ccw', 'cw'"
@@ -371,6 +381,7 @@ contains
              kv('obstacle', quoted(c%obstacle))
       k = chosen_shape(c)
       if (k > 0) text = text//c%shapes(k)%input%echo()
+      text = text//c%motion%echo()
       if (all(c%origin /= unset)) text = text//kv('origin', reals(c%origin))
       text = text//kv('direction', quoted(c%direction))//kv('multiplier', quoted(c%multiplier))// &
              kv('friction', quoted(c%friction))

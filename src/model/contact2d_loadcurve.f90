@@ -18,6 +18,7 @@ module contact2d_loadcurve
       procedure :: init => loadcurve_init
       procedure :: value => loadcurve_value
       procedure :: end_time => loadcurve_end_time
+      procedure :: integral => loadcurve_integral
    end type loadcurve_t
 
 contains
@@ -56,6 +57,32 @@ contains
       end do
       v = this%values(this%nstage)
    end function loadcurve_value
+
+   !> The integral of the curve from 0 to t, in closed form (an obstacle's displacement from its
+   !> velocity curve, docs/geometry.md): over a whole stage of length T from a to b it is
+   !> T (a + b)/2 (r(1 - tau) = 1 - r(tau)); over the part s of a stage
+   !> T (a s + (b - a) R(s)) with R(s) = integral_0^s r = s^2/2 - sin^2(pi s)/(2 pi^2);
+   !> after the last stage the held value times the time since. t <= 0 gives 0.
+   pure real(wp) function loadcurve_integral(this, t) result(q)
+      class(loadcurve_t), intent(in) :: this
+      real(wp), intent(in) :: t   !< time [s]
+      integer :: k
+      real(wp) :: a, b, tk, s
+      q = 0
+      if (t <= 0) return
+      do k = 1, this%nstage
+         a = this%values(k - 1)
+         b = this%values(k)
+         tk = this%times(k) - this%times(k - 1)
+         if (t < this%times(k)) then
+            s = (t - this%times(k - 1))/tk
+            q = q + tk*(a*s + (b - a)*(0.5_wp*s*s - sin(pi*s)**2/(2*pi*pi)))
+            return
+         end if
+         q = q + 0.5_wp*tk*(a + b)
+      end do
+      q = q + this%values(this%nstage)*(t - this%times(this%nstage))
+   end function loadcurve_integral
 
    !> End of the last stage [s].
    pure real(wp) function loadcurve_end_time(this) result(t)

@@ -26,6 +26,7 @@ contains
       real(wp), intent(in) :: center(2), radius
       logical, intent(in) :: inside
       this%center = center
+      this%pivot = center
       this%radius = radius
       this%inside = inside
    end subroutine circle_init

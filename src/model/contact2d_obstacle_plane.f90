@@ -23,6 +23,7 @@ contains
       class(plane_obstacle_t), intent(out) :: this
       real(wp), intent(in) :: point(2), normal(2)
       this%point = point
+      this%pivot = point
       this%nu = normal/norm2(normal)
    end subroutine plane_init
 

@@ -28,15 +28,22 @@ module contact2d_output
    !> kinetic_energy and strain_energy are the staggered energies of the balance (SPEC section 6);
    !> kinetic_energy_physical and strain_energy_physical those of the state at the last whole
    !> step t_n (state_t kinetic_step, strain_step).
-   character(len=24), parameter :: history_names(18) = [character(len=24) :: &
+   !> The last four only where the obstacle moves (docs/geometry.md): the work of the contact
+   !> forces on the body through the obstacle's motion (the balance's input W_obstacle), the
+   !> obstacle's displacement d(t) and angle theta(t) at the sample's time.
+   character(len=24), parameter :: history_names(22) = [character(len=24) :: &
       'time', 'kinetic_energy', 'strain_energy', 'external_work', 'friction_dissipation', &
       'damping_dissipation', 'energy_balance_error', 'residual', 'normal_force_total', &
       'tangential_force_total', 'normal_contact_work', 'step', 'damping_alpha', 'stick_increment_max', &
-      'status_changes', 'penetration_max', 'kinetic_energy_physical', 'strain_energy_physical']
+      'status_changes', 'penetration_max', 'kinetic_energy_physical', 'strain_energy_physical', &
+      'obstacle_work', 'obstacle_displacement_x', 'obstacle_displacement_y', 'obstacle_angle']
    !> (plane strain: forces are per unit thickness, N/mm)
-   character(len=8), parameter :: history_units(18) = [character(len=8) :: &
-      's', 'mJ', 'mJ', 'mJ', 'mJ', 'mJ', '1', '1', 'N/mm', 'N/mm', 'mJ', '1', '1/s', 'mm', '1', 'mm', 'mJ', 'mJ']
+   character(len=8), parameter :: history_units(22) = [character(len=8) :: &
+      's', 'mJ', 'mJ', 'mJ', 'mJ', 'mJ', '1', '1', 'N/mm', 'N/mm', 'mJ', '1', '1/s', 'mm', '1', 'mm', 'mJ', 'mJ', &
+      'mJ', 'mm', 'mm', 'rad']
    integer, parameter :: nseries = size(history_names)
+   !> the series written for a fixed obstacle
+   integer, parameter :: nseries_fixed = 18
    integer, parameter :: flush_samples = 256
    real(wp), parameter :: flush_seconds = 2.0_wp
 
@@ -59,6 +66,11 @@ module contact2d_output
    type :: output_t
       type(h5file_t) :: file
       type(h5series_t) :: series(nseries)
+      integer :: nactive = nseries_fixed   !< series written (nseries where the obstacle moves)
+      !> where the obstacle moves: /history/contact_slip_velocity, the contact nodes' slip
+      !> velocities relative to the obstacle, one row of ncontact values per sample (flattened)
+      type(h5series_t) :: slip_series
+      real(wp), allocatable :: slip_buf(:)   !< flush_samples rows of ncontact values
       integer(hid_t) :: history = -1
       integer(hid_t) :: fields = -1
       real(wp) :: buffer(flush_samples, nseries) = 0   !< one contiguous column per series
@@ -165,6 +177,9 @@ contains
             call this%file%dataset(g, 'normal', c%normal, '1')
             ! the body whose boundary Gamma_c is (1-based, as /mesh/body)
             if (size(model%pairs) > 0) call this%file%attr(g, 'slave_body', model%pairs(1)%slave_body)
+            ! geometry 'current' (docs/geometry.md): the gaps and normals above are those of
+            ! the initial configuration; the step refreshes them
+            if (c%current) call this%file%attr(g, 'geometry', 'current')
             if (c%friction) then
                call this%file%attr(g, 'friction', c%law%name())
                ! the law's own parameters (Coulomb: friction_coefficient), whatever the law
@@ -179,10 +194,20 @@ contains
          end associate
       end if
       this%history = this%file%group(root, 'history')
-      do k = 1, nseries
+      this%nactive = nseries_fixed
+      if (allocated(model%contact%obstacle)) then
+         if (model%contact%obstacle%moving) this%nactive = nseries
+      end if
+      do k = 1, this%nactive
          call this%series(k)%create(this%file, this%history, trim(history_names(k)), &
                                     trim(history_units(k)), flush_samples)
       end do
+      if (this%nactive == nseries) then
+         call this%slip_series%create(this%file, this%history, 'contact_slip_velocity', 'mm/s', &
+                                      flush_samples*model%contact%nc)
+         call this%file%attr(this%slip_series%id, 'ncontact', model%contact%nc)
+         allocate (this%slip_buf(flush_samples*model%contact%nc))
+      end if
       call this%file%flush()
       call system_clock(this%last_flush_clock)
       stat = this%file%stat
@@ -279,6 +304,21 @@ contains
       type(state_t), intent(inout) :: state
       real(wp), intent(in) :: residual
       integer(i8) :: now, rate
+      integer :: k
+      real(wp) :: obstacle_now(3)
+      obstacle_now = 0
+      if (this%nactive == nseries) then
+         obstacle_now(1:2) = state%contact%obstacle%displacement(state%time)
+         obstacle_now(3) = state%contact%obstacle%angle(state%time)
+         ! slip velocity of the last step relative to the obstacle's surface point, along t_i:
+         ! v^(n+1/2).t_i - Delta s_i.t_i / dt (0 where a node sticks)
+         associate (c => state%contact, nc => state%contact%nc)
+            do k = 1, nc
+               this%slip_buf(this%nbuf*nc + k) = dot_product(state%v(:, c%node(k)), c%tangent(:, k))
+               if (state%dt > 0) this%slip_buf(this%nbuf*nc + k) = this%slip_buf(this%nbuf*nc + k) - c%ds(1, k)/state%dt
+            end do
+         end associate
+      end if
       this%nbuf = this%nbuf + 1
       associate (c => state%contact)
          this%buffer(this%nbuf, :) = [state%time, state%kinetic, state%strain, state%external_work, &
@@ -287,7 +327,7 @@ contains
                                       residual, c%normal_total, c%tangential_total, c%normal_work, &
                                       real(state%step, wp), state%alpha, c%stick_increment_max, &
                                       real(c%status_changes, wp), c%penetration_max, &
-                                      state%kinetic_step, state%strain_step]
+                                      state%kinetic_step, state%strain_step, c%obstacle_work, obstacle_now]
          c%stick_increment_max = 0
          c%status_changes = 0
          c%penetration_max = 0
@@ -336,9 +376,11 @@ contains
       class(output_t), intent(inout) :: this
       integer :: k
       if (this%nbuf > 0) then
-         do k = 1, nseries
+         do k = 1, this%nactive
             call this%series(k)%append(this%file, this%buffer(1:this%nbuf, k))
          end do
+         if (allocated(this%slip_buf)) &
+            call this%slip_series%append(this%file, this%slip_buf(1:this%nbuf*size(this%slip_buf)/flush_samples))
          this%nbuf = 0
       end if
       call this%file%flush()
@@ -361,9 +403,10 @@ contains
       integer :: e, k, a, b
 
       call this%flush_history()
-      do k = 1, nseries
+      do k = 1, this%nactive
          call this%series(k)%close(this%file)
       end do
+      call this%slip_series%close(this%file)
       call this%file%close_group(this%history)
       call this%file%close_group(this%fields)
       root = this%file%id

@@ -100,7 +100,7 @@ module contact2d_explicit
       real(wp) :: kinetic_step = 0
       real(wp) :: strain_step = 0
       real(wp) :: external_work = 0        !< loads and Dirichlet reactions
-      real(wp) :: work_in = 0              !< sum of |external work increments|
+      real(wp) :: work_in = 0              !< sum of |external work increments| (a moving obstacle's included)
       real(wp) :: damping_dissipation = 0
       real(wp) :: initial_kinetic = 0      !< 1/2 v^(-1/2) M v^(-1/2), energy put in at t = 0
       !> sum m (v^(n-1/2))^2: twice the kinetic energy of the last step, formed from v by the
@@ -178,7 +178,7 @@ contains
       type(contact_t), intent(inout) :: contact
       integer, intent(in) :: nsteps
       integer :: k, p, node, comp
-      real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, workt, f, corr(4)
+      real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, workt, f, corr(4), wobst
       logical :: full
       real(wp), pointer, contiguous :: swap(:, :)
 
@@ -227,7 +227,10 @@ contains
          end do
          call set_prescribed(load%npres, this%p_dof, load%pcurve, this%cnext, this%unew)
          ! 3. contact
-         if (contact%active) call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc)
+         ! (wobst: the work of a moving obstacle on the body in this step, 0 for a fixed one)
+         wobst = contact%obstacle_work
+         if (contact%active) call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc, this%time)
+         wobst = contact%obstacle_work - wobst
          ! 4a. external work of the reactions (inertial and damping parts included) and loads,
          !     with the centred increment (u^(n+1) - u^(n-1))/2 = dt vbar
          !     (the reactions in special_correct below, the loads here, before it changes v)
@@ -246,6 +249,8 @@ contains
          work = work + workt
          this%external_work = this%external_work + work
          this%work_in = this%work_in + abs(work)
+         ! a moving obstacle puts work in too (docs/geometry.md)
+         this%work_in = this%work_in + abs(wobst)
          call add_energies(this, this%sweep%partial, corr, this%alpha, dt, full)
          ! u^(n+1) becomes u (the arrays are swapped, not copied)
          swap => this%u

@@ -267,6 +267,9 @@ contains
             call chain_body(nodes, slave)
             if (stat /= 0) return
             call c%shape%make(cfg%obstacle)
+            ! the obstacle's prescribed motion and where the step takes its geometry from
+            call c%motion%apply(cfg%obstacle)
+            cfg%current = c%motion%current()
             cfg%origin = c%origin
             cfg%multiplier = c%multiplier
             if (allocated(c%law)) allocate (cfg%friction, source=c%law)

@@ -72,17 +72,19 @@ contains
       this%fext => this%own_fext
    end subroutine state_own_fields
 
-   !> |E_kin0 + W_ext - (E_kin + E_strain + D_friction + D_damping + W_normal)| / max(terms)
-   !> (SPEC section 6, with the initial kinetic energy of docs/deck.md &initial).
+   !> |E_kin0 + W_ext + W_obstacle - (E_kin + E_strain + D_friction + D_damping + W_normal)| /
+   !> max(terms) (SPEC section 6, with the initial kinetic energy of docs/deck.md &initial and the
+   !> work of a moving obstacle on the body, docs/geometry.md; 0 for a fixed obstacle).
    real(wp) function state_balance_error(this) result(err)
       class(state_t), intent(in) :: this
       real(wp) :: scale
-      associate (friction => this%contact%friction_dissipation, normal_work => this%contact%normal_work)
+      associate (friction => this%contact%friction_dissipation, normal_work => this%contact%normal_work, &
+                 obstacle_work => this%contact%obstacle_work)
          scale = max(abs(this%external_work), abs(this%kinetic), abs(this%strain), abs(friction), &
-                     abs(this%damping_dissipation), abs(normal_work), this%initial_kinetic)
+                     abs(this%damping_dissipation), abs(normal_work), this%initial_kinetic, abs(obstacle_work))
          if (scale > 0) then
-            err = abs(this%initial_kinetic + this%external_work - (this%kinetic + this%strain + friction + &
-                                             this%damping_dissipation + normal_work))/scale
+            err = abs(this%initial_kinetic + this%external_work + obstacle_work - (this%kinetic + this%strain + &
+                                             friction + this%damping_dissipation + normal_work))/scale
          else
             err = 0
          end if

@@ -190,6 +190,26 @@ CASES = [
     ("mechanism_second_body", "bad_decks/separate_right_free.nml", ["--static"],
      r"separate_right_free\.nml: body 'right' is free to translate along x: no support and no contact "
      r"stops it; add a &dirichlet$"),
+    # the obstacle's motion (docs/geometry.md "Moving obstacles"): each value checked, named
+    ("obstacle_motion_times_decreasing", "inputs/block_on_moving_plane_p1.nml",
+     ["--set", "contact:obstacle_motion_times=3e-6, 2e-6"],
+     r"contact:obstacle_motion_times must increase strictly \(obstacle_motion_times\(2\) = 2"),
+    ("obstacle_velocity_nan", "inputs/block_on_moving_plane_p1.nml",
+     ["--set", "contact:obstacle_velocity_x=0, NaN"], r"contact:obstacle_velocity_x\(2\) = NaN must be finite"),
+    ("obstacle_velocity_three_values", "inputs/block_on_moving_plane_p1.nml",
+     ["--set", "contact:obstacle_velocity_x=0, 500, 1000"],
+     r"contact:obstacle_velocity_x needs one value per obstacle_motion_times entry \(2\).*got 3\b"),
+    ("obstacle_spin_on_plane", "inputs/block_on_moving_plane_p1.nml",
+     ["--set", "contact:obstacle_spin=0, 1"], r"contact:obstacle_spin is set but obstacle = 'plane'"),
+    ("obstacle_moving_initial_geometry", "inputs/block_on_moving_plane_p1.nml",
+     ["--set", "contact:geometry='initial'"], r"contact:geometry = 'initial' cannot follow a moving obstacle"),
+    ("geometry_unknown", "inputs/coulomb_sliding_p1.nml",
+     ["--set", "contact:geometry='deformed'"], r"contact:geometry = 'deformed' is not one of 'initial', 'current'"),
+    # the static engine refuses a moving obstacle (a dragged frictional contact: path dependent)
+    ("static_moving_obstacle", "inputs/block_on_moving_plane_p1.nml", ["--static"],
+     r"solver:method = 'static' refuses a moving obstacle"),
+    ("static_current_geometry", "inputs/coulomb_sliding_p1.nml", ["--static", "--set", "contact:geometry='current'"],
+     r"solver:method = 'static' refuses contact:geometry = 'current'"),
 ]
 
 # Bytes of the output file that already exists in the 'existing_output' case (not HDF5 on

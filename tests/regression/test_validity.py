@@ -13,7 +13,7 @@ further than its own size (docs/output.md, "Validity warnings").
   with material:young in GPa (70 instead of 7e4) the strain warning.
 - every shipped deck (inputs/*.nml) at its shipped settings warns about neither: the static
   engine's end state where the deck allows it (the same discrete problem), the explicit run for
-  the impact and penalty decks.
+  the impact and penalty decks, and the moving-obstacle decks (which the static engine refuses).
 """
 import glob
 import math
@@ -84,7 +84,9 @@ def body(t):
     t.check_equal(run, "one strain warning (E in GPa: strain ~ 150/70)", 1, len(lines))
 
     # ---- 3. no shipped deck is warned about --------------------------------------------------
-    explicit_only = ("impact_bar_p1", "impact_bar_p0", "impact_bar_penalty", "patch_compression_penalty")
+    explicit_only = ("impact_bar_p1", "impact_bar_p0", "impact_bar_penalty", "patch_compression_penalty",
+                     # a moving obstacle: the static engine refuses it (docs/geometry.md)
+                     "block_on_moving_plane_p1", "block_on_moving_plane_p0", "cylinder_sliding_layer")
     decks = sorted(glob.glob(os.path.join(t.inputs, "*.nml")))
     t.check(t.workdir, "shipped decks found", len(decks) >= 20, ">= 20", len(decks))
     for deck in decks:
