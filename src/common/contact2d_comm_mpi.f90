@@ -103,34 +103,35 @@ contains
       if (started) call MPI_Allreduce(i, comm_max, 1, MPI_INTEGER, MPI_MAX, MPI_COMM_WORLD, ierr)
    end function comm_max
 
-   !> Start the exchange of n values with the ranks below and above (-1: none): send
-   !> x(send_lo : send_lo + n - 1) to below and x(send_hi : ...) to above, receive
-   !> x(recv_lo : ...) from below and x(recv_hi : ...) from above (non-blocking: comm_halo_wait).
-   subroutine comm_halo_start(x, n, below, send_lo, recv_lo, above, send_hi, recv_hi)
-      real(wp), intent(inout), asynchronous :: x(*)
-      integer, intent(in) :: n, below, send_lo, recv_lo, above, send_hi, recv_hi
+   !> Start the exchange of n values with the ranks below and above (-1: none): send(:, 1) to
+   !> below and send(:, 2) to above, receive recv(:, 1) from below and recv(:, 2) from above
+   !> (non-blocking: comm_halo_wait; neither buffer may be touched before it).
+   subroutine comm_halo_start(send, recv, n, below, above)
+      integer, intent(in) :: n, below, above
+      real(wp), intent(in), asynchronous :: send(n, 2)
+      real(wp), intent(inout), asynchronous :: recv(n, 2)
       integer :: ierr
       nreq = 0
       if (.not. started) return
       if (below >= 0) then
-         call MPI_Irecv(x(recv_lo), n, MPI_DOUBLE_PRECISION, below, 1, MPI_COMM_WORLD, req(nreq + 1), ierr)
-         call MPI_Isend(x(send_lo), n, MPI_DOUBLE_PRECISION, below, 2, MPI_COMM_WORLD, req(nreq + 2), ierr)
+         call MPI_Irecv(recv(1, 1), n, MPI_DOUBLE_PRECISION, below, 1, MPI_COMM_WORLD, req(nreq + 1), ierr)
+         call MPI_Isend(send(1, 1), n, MPI_DOUBLE_PRECISION, below, 2, MPI_COMM_WORLD, req(nreq + 2), ierr)
          nreq = nreq + 2
       end if
       if (above >= 0) then
-         call MPI_Irecv(x(recv_hi), n, MPI_DOUBLE_PRECISION, above, 2, MPI_COMM_WORLD, req(nreq + 1), ierr)
-         call MPI_Isend(x(send_hi), n, MPI_DOUBLE_PRECISION, above, 1, MPI_COMM_WORLD, req(nreq + 2), ierr)
+         call MPI_Irecv(recv(1, 2), n, MPI_DOUBLE_PRECISION, above, 2, MPI_COMM_WORLD, req(nreq + 1), ierr)
+         call MPI_Isend(send(1, 2), n, MPI_DOUBLE_PRECISION, above, 1, MPI_COMM_WORLD, req(nreq + 2), ierr)
          nreq = nreq + 2
       end if
    end subroutine comm_halo_start
 
-   !> Wait for the exchange started by comm_halo_start on x (x passed again: its values change).
-   subroutine comm_halo_wait(x)
-      real(wp), intent(inout), asynchronous :: x(*)
+   !> Wait for the exchange started by comm_halo_start (recv passed again: its values change).
+   subroutine comm_halo_wait(recv)
+      real(wp), intent(inout), asynchronous :: recv(:, :)
       integer :: ierr
       if (nreq == 0) return
       call MPI_Waitall(nreq, req, MPI_STATUSES_IGNORE, ierr)
       nreq = 0
-      if (.false.) x(1) = x(1)
+      if (size(recv) < 0) recv = 0
    end subroutine comm_halo_wait
 end module contact2d_comm

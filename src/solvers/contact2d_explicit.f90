@@ -135,6 +135,10 @@ module contact2d_explicit
       !> the whole fields' gather (u_), reals
       integer, allocatable :: x_count(:), x_displ(:), u_count(:), u_displ(:)
       real(wp), allocatable :: x_send(:), x_recv(:)
+      !> the halo: this rank's first and last rows of u~ sent (:, 1) below and (:, 2) above, the
+      !> neighbours' rows beside them received, in flight from the sweep of one step to the next
+      real(wp), allocatable :: h_send(:, :), h_recv(:, :)
+      logical :: halo_pending = .false.
    contains
       procedure :: init => explicit_init
       procedure :: advance => explicit_advance
@@ -276,9 +280,6 @@ contains
          swap => this%u
          this%u => this%unew
          this%unew => swap
-         ! several processes: this rank's first and last rows of u^(n+1) to its neighbours, their
-         ! rows beside them back, in flight until the next sweep's inside rows are done
-         if (this%split) call halo_start(this)
          this%step = this%step + 1
          this%time = this%time0 + real(this%step - this%step0, wp)*dt
          ! blow-up guard: runaway kinetic energy or non-finite values
@@ -350,6 +351,9 @@ contains
          this%u_count(r) = nrow*(this%row_hi(r) - this%row_lo(r) + 1)
          this%u_displ(r) = nrow*this%row_lo(r)
       end do
+      allocate (this%h_send(nrow, 2), this%h_recv(nrow, 2))
+      this%h_send = 0
+      this%h_recv = 0
       ! the listed dofs' shares follow when they are known (split_dofs, from the next advance)
       this%s_ncontact = -1
    end subroutine explicit_distribute
@@ -379,10 +383,12 @@ contains
       allocate (this%x_send(this%x_count(this%rank)), this%x_recv(n))
    end subroutine split_dofs
 
-   !> The sweep of this rank's rows (several processes): the rows that need no row of another
-   !> rank first, while the halo exchange started by the last step is in flight, then, once it
-   !> has arrived, the first and the last two rows (a row reads u on the rows j - 1 .. j + 2:
-   !> contact2d_sweep); then the step's gather.
+   !> The sweep of this rank's rows (several processes). The rows beside them, sent by the
+   !> neighbours during the last step, are put into u first (halo_merge); then this rank's first
+   !> and last rows are swept and sent to the neighbours (MPI_Isend/Irecv, halo_start), and the
+   !> inside rows swept while they travel; then the step's gather. Rows lo and hi read u on the
+   !> rows lo - 1 and hi + 1 (a row reads u on j - 1 .. j + 2, contact2d_sweep; row hi's j + 2
+   !> value only forms what the next row would reuse, and no row after it does: never used).
    subroutine split_sweep(this, stiff, ca, cb, dt, full)
       type(explicit_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
@@ -391,16 +397,17 @@ contains
       integer :: lo, hi, rows(2)
       lo = this%row_lo(this%rank)
       hi = this%row_hi(this%rank)
-      rows(1) = lo + 1
-      rows(2) = hi - 2
-      if (rows(2) >= rows(1)) call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
-      call comm_halo_wait(this%u)
+      if (this%halo_pending) call halo_merge(this)
       rows(1) = lo
       rows(2) = lo
       call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
-      rows(1) = max(lo + 1, hi - 1)
+      rows(1) = hi
       rows(2) = hi
       call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
+      call halo_start(this)
+      rows(1) = lo + 1
+      rows(2) = hi - 1
+      if (rows(2) >= rows(1)) call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
       call split_gather(this, this%sweep%partial, this%v, this%unew, this%fint)
    end subroutine split_sweep
 
@@ -451,8 +458,9 @@ contains
       end do
    end subroutine split_gather
 
-   !> Send this rank's first and last rows of u to the ranks below and above, receive theirs
-   !> beside them (non-blocking; split_sweep waits).
+   !> Send this rank's first and last rows of u~ (just swept) to the ranks below and above and
+   !> receive theirs (non-blocking; halo_merge waits). Sent from copies: the step changes u~ at
+   !> the listed dofs before the messages are done.
    subroutine halo_start(this)
       type(explicit_t), intent(inout) :: this
       integer :: nrow, lo, hi, below, above
@@ -461,8 +469,46 @@ contains
       hi = this%row_hi(this%rank)
       below = merge(this%rank - 1, -1, this%rank > 0)
       above = merge(this%rank + 1, -1, this%rank < this%nproc - 1)
-      call comm_halo_start(this%u, nrow, below, lo*nrow + 1, (lo - 1)*nrow + 1, above, hi*nrow + 1, (hi + 1)*nrow + 1)
+      call flat_copy(nrow, this%unew, lo*nrow, this%h_send(:, 1))
+      call flat_copy(nrow, this%unew, hi*nrow, this%h_send(:, 2))
+      call comm_halo_start(this%h_send, this%h_recv, nrow, below, above)
+      this%halo_pending = .true.
    end subroutine halo_start
+
+   !> The neighbours' rows of u~ received (halo_start of the last step) put into u beside this
+   !> rank's rows, but at the listed dofs: those every rank has already changed alike (loads,
+   !> prescribed values, contact), so that u there is u^(n+1) of every rank.
+   subroutine halo_merge(this)
+      type(explicit_t), intent(inout) :: this
+      integer :: nrow, lo, hi
+      call comm_halo_wait(this%h_recv)
+      this%halo_pending = .false.
+      nrow = 2*(this%sweep%nx + 1)
+      lo = this%row_lo(this%rank)
+      hi = this%row_hi(this%rank)
+      if (this%rank > 0) call merge_row(nrow, this%h_recv(:, 1), this%s_other, (lo - 1)*nrow, this%u)
+      if (this%rank < this%nproc - 1) call merge_row(nrow, this%h_recv(:, 2), this%s_other, (hi + 1)*nrow, this%u)
+   end subroutine halo_merge
+
+   !> b(1:n) = a(o + 1 : o + n) (flattened a).
+   subroutine flat_copy(n, a, o, b)
+      integer, intent(in) :: n, o
+      real(wp), intent(in) :: a(*)
+      real(wp), intent(out) :: b(n)
+      b = a(o + 1:o + n)
+   end subroutine flat_copy
+
+   !> u(o + p) = row(p) where other(o + p) = 1 (not a listed dof), p = 1 .. n (flattened u).
+   subroutine merge_row(n, row, other, o, u)
+      integer, intent(in) :: n, o
+      real(wp), intent(in) :: row(n)
+      integer(int8), intent(in) :: other(*)
+      real(wp), intent(inout) :: u(*)
+      integer :: p
+      do p = 1, n
+         if (other(o + p) == 1) u(o + p) = row(p)
+      end do
+   end subroutine merge_row
 
    !> Two fields made whole on every rank: each rank's rows to all (in place).
    subroutine gather_fields(this, a, b)
@@ -478,7 +524,7 @@ contains
    subroutine split_end(this)
       type(explicit_t), intent(inout) :: this
       integer :: sig
-      call comm_halo_wait(this%u)
+      if (this%halo_pending) call halo_merge(this)
       call gather_fields(this, this%u, this%unew)
       call gather_fields(this, this%v, this%fint)
       sig = comm_max(sys_signal_pending())
