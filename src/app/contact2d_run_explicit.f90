@@ -159,7 +159,8 @@ contains
       t_steps = 0
       t_output = 0
       clock_last_progress = clock1
-      interactive = deck%output%progress .and. isatty(output_unit)
+      ! (not under mpirun: its ranks' output is a pseudo-terminal even when mpirun's is a file)
+      interactive = deck%output%progress .and. isatty(output_unit) .and. comm_size() == 1
       t_load_end = model%load%end_time()
       done = .false.
       state%status = 'not converged'
