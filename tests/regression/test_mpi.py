@@ -7,8 +7,8 @@ serial order, and the rest of the step is done alike on every rank from the same
 the file rank 0 writes must equal the serial run's bit for bit (docs/performance.md, "Several
 processes (MPI)"). Checked on the paper scene, P1 and P0, with 1, 2, 3 and 4 ranks: a fixed
 number of steps at the deck's level and the converged end state at level 2 (every dataset and
-attribute but the timings). Contracts: a Gmsh deck under mpirun stops with one line, exit 1,
-no file; SIGTERM sent to rank 1 alone stops every rank at the same step (exit 143, one line,
+attribute but the timings). Contracts: a Gmsh deck, the static engine and a mesh with fewer
+than two grid rows per rank stop under mpirun with one line, exit 1, no file; SIGTERM sent to rank 1 alone stops every rank at the same step (exit 143, one line,
 the file holds status 'interrupted'), it does not hang.
 """
 import os
@@ -103,14 +103,19 @@ def body(t):
         same_as_serial(t, deck, ["--set", "solver:max_steps=600"], m + "_600_steps")
         same_as_serial(t, deck, ["--set", "mesh:level=2"], m + "_end_state_level2")
 
-    # a deck the ranks cannot share: one line, exit 1, nothing written
-    r = mpirun(t, 2, t.deck("gmsh_rectangle_p1.nml"), [], "gmsh_refused")
-    t.expect_exit(r, 1, stop=False)
-    lines = r.stderr_lines()
-    t.check(r, "one stderr line, the error naming mpirun", len(lines) == 1 and lines[0].startswith(c2dtest.ERROR_PREFIX)
-            and "mpirun" in lines[0], "1 line 'contact2d: error: ... mpirun ...'", " | ".join(lines))
-    t.check(r, "no output file", not os.path.exists(r.h5) and not [f for f in os.listdir(r.cwd) if f.startswith("out.")],
-            "none", ", ".join(os.listdir(r.cwd)))
+    # what the ranks cannot share: one line naming the reason, exit 1, nothing written
+    p1 = t.deck("baillet_sassi_2002_p1.nml")
+    for name, n, deck, args, word in (("gmsh_refused", 2, t.deck("gmsh_rectangle_p1.nml"), [], "mpirun"),
+                                      ("static_refused", 2, p1, ["--static"], "one process"),
+                                      ("rows_refused", 3, p1, ["--set", "mesh:level=0"], "4 grid rows")):
+        r = mpirun(t, n, deck, args, name)
+        t.expect_exit(r, 1, stop=False)
+        lines = r.stderr_lines()
+        t.check(r, "one stderr line, the error naming '%s'" % word,
+                len(lines) == 1 and lines[0].startswith(c2dtest.ERROR_PREFIX) and word in lines[0],
+                "1 line 'contact2d: error: ... %s ...'" % word, " | ".join(lines))
+        t.check(r, "nothing written", not [f for f in os.listdir(r.cwd) if f.startswith("out.") or f.startswith(".out.")],
+                "no file", ", ".join(os.listdir(r.cwd)))
 
     # SIGTERM to rank 1 only: every rank stops at the same step (the signal is agreed in the step's
     # gather), rank 0 writes the interrupted state; a rank that stopped alone would hang the others
