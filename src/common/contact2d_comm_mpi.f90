@@ -12,7 +12,7 @@ module contact2d_comm
    implicit none
    private
    public :: comm_init, comm_end, comm_rank, comm_size, comm_barrier, comm_allgatherv, comm_allgatherv_inplace, &
-             comm_max, comm_halo_start, comm_halo_wait, comm_abort, comm_mpi
+             comm_max, comm_halo_start, comm_halo_wait, comm_abort, comm_failing, comm_mpi
 
    !> Built with MPI (this file): the serial stand-in says .false.
    logical, parameter :: comm_mpi = .true.
@@ -48,6 +48,16 @@ contains
       if (.not. done) call MPI_Finalize(ierr)
       started = .false.
    end subroutine comm_end
+
+   !> Before a failed run stops (exit code /= 0, one line from rank 0): MPI is not ended, since
+   !> the failure may be this rank's alone and MPI_Finalize waits for every rank; mpirun ends the
+   !> others once one exits with a non-zero code. A rank other than 0 waits two seconds first, so
+   !> that when every rank fails alike rank 0 (the one that prints) is the first to exit.
+   subroutine comm_failing()
+      if (.not. started) return
+      if (my_rank /= 0) call sleep(2)
+      started = .false.
+   end subroutine comm_failing
 
    !> Stop every process of the run with this exit code (one rank failed alone).
    subroutine comm_abort(code)
