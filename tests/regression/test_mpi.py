@@ -8,12 +8,15 @@ the file rank 0 writes must equal the serial run's bit for bit (docs/performance
 processes (MPI)"). Checked on the paper scene, P1 and P0, with 1, 2, 3 and 4 ranks: a fixed
 number of steps at the deck's level and the converged end state at level 2 (every dataset and
 attribute but the timings). Contracts: a Gmsh deck, the static engine and a mesh with fewer
-than two grid rows per rank stop under mpirun with one line, exit 1, no file; SIGTERM sent to rank 1 alone stops every rank at the same step (exit 143, one line,
+than two grid rows per rank stop under mpirun with one line, exit 1, no file; a write that fails
+on rank 0 alone (a full tmpfs, where one can be mounted) ends the run with one line and exit 2,
+no hang; SIGTERM sent to rank 1 alone stops every rank at the same step (exit 143, one line,
 the file holds status 'interrupted'), it does not hang.
 """
 import os
 import signal
 import subprocess
+import tempfile
 import time
 
 import h5py
@@ -116,6 +119,35 @@ def body(t):
                 "1 line 'contact2d: error: ... %s ...'" % word, " | ".join(lines))
         t.check(r, "nothing written", not [f for f in os.listdir(r.cwd) if f.startswith("out.") or f.startswith(".out.")],
                 "no file", ", ".join(os.listdir(r.cwd)))
+
+    # a failure of rank 0 alone (only rank 0 writes: a full disk, a small tmpfs, makes its write
+    # fail) stops the run with its one line and exit 2; the other rank must not be left waiting
+    # (MPI_Finalize waits for every rank: it hung there). A file size limit would not do: MPI's
+    # own shared-memory files would hit it.
+    mnt = tempfile.mkdtemp(prefix="c2d_tmpfs_", dir=t.workdir)
+    mounted = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=256k", "tmpfs", mnt],
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT)
+    if mounted.returncode != 0:
+        print("SKIP write_fails_rank0: cannot mount a tmpfs here (%s)" % mounted.stdout.decode("utf-8", "replace").strip())
+    else:
+        try:
+            snaps = ",".join("%g" % (k * 2.5e-7) for k in range(1, 17))
+            cmd = [t.args.mpirun, "-q", "--oversubscribe", "-np", "2", t.exe, p1, "-o", "out.h5", "-q",
+                   "--set", "mesh:level=3", "--set", "output:snapshot_times=" + snaps]
+            p = subprocess.Popen(cmd, cwd=mnt, stdout=subprocess.PIPE, stderr=subprocess.PIPE, env={**os.environ, **ENV})
+            try:
+                out, err = p.communicate(timeout=120)
+            except subprocess.TimeoutExpired:
+                p.kill()
+                p.communicate()
+                t.abort("a write failure on rank 0 did not end the run within 120 s (a hang)")
+            run = c2dtest.Run(cmd, mnt, p.returncode, out.decode(), err.decode(), 0.0, os.path.join(mnt, "out.h5"))
+            t.expect_exit(run, 2, stop=False)
+            lines = run.stderr_lines()
+            t.check(run, "one stderr line with the system's reason", len(lines) == 1 and "No space left" in lines[0],
+                    "1 line '... No space left on device ...'", " | ".join(lines))
+        finally:
+            subprocess.run(["umount", mnt])
 
     # SIGTERM to rank 1 only: every rank stops at the same step (the signal is agreed in the step's
     # gather), rank 0 writes the interrupted state; a rank that stopped alone would hang the others
