@@ -33,7 +33,7 @@ contains
 
       call system_clock(clock0, rate)
       ! the processes of mpirun -np N (one without it); the ranks but 0 print nothing and write
-      ! no file: every rank runs the same story on the same data (docs/performance.md)
+      ! no file: every rank runs the same story on the same data (docs/mpi.md)
       call comm_init()
       if (comm_rank() /= 0) call quiet_rank()
       call tuner%begin()  ! the set-up window of the thread tuner (contact2d_threads)

@@ -96,7 +96,7 @@ contains
       character(len=:), allocatable :: errmsg
       call solver%init(model%stiff, model%load, model%dt, model%damping, deck%solver%alpha, &
                        deck%solver%damping_interval)
-      ! mpirun -np N: the grid rows shared among the processes (docs/performance.md)
+      ! mpirun -np N: the grid rows shared among the processes (docs/mpi.md)
       if (comm_size() > 1) then
          call solver%distribute(comm_size(), comm_rank(), stat, errmsg)
          if (stat /= 0) call fail(1, errmsg)

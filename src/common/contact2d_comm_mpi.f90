@@ -1,4 +1,4 @@
-!> The processes of a run and their messages (docs/performance.md, "Several processes (MPI)"):
+!> The processes of a run and their messages (docs/mpi.md):
 !> the only module that uses MPI, so that no other file includes it. This file is built when
 !> CONTACT2D_MPI is on; contact2d_comm_serial.f90, the same interface for one process, when off.
 !>

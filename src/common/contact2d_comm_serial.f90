@@ -1,6 +1,6 @@
 !> The processes of a run, built without MPI (CONTACT2D_MPI off): one process, rank 0 of 1; the
 !> gathers copy, the halo exchange has no neighbour. The same interface as contact2d_comm_mpi.f90
-!> (docs/performance.md, "Several processes (MPI)").
+!> (docs/mpi.md).
 module contact2d_comm
    use contact2d_kinds, only: wp
    implicit none

@@ -45,7 +45,7 @@ module contact2d_outpath
       character(len=:), allocatable :: stale        !< OUT.xmf of the replaced result, to remove
       logical :: force = .false.
       !> this process writes the output (rank 0 of several, or the only one); the other ranks of
-      !> mpirun take no lock and leave every file alone (docs/performance.md)
+      !> mpirun take no lock and leave every file alone (docs/mpi.md)
       logical :: writer = .true.
       !> --force and OUT.h5 existed when the lock was taken: only a run that reaches its end
       !> replaces it (destination)

@@ -71,7 +71,7 @@ module contact2d_output
       integer(i8), allocatable :: snap_step(:)   !< their steps, in the order written
       real(wp), allocatable :: snap_time(:)      !< their times [s] (the sidecar's time series)
       !> this process writes the file (rank 0 of several, or the only one); on the other ranks of
-      !> mpirun every procedure here returns at once, touching no file (docs/performance.md)
+      !> mpirun every procedure here returns at once, touching no file (docs/mpi.md)
       logical :: writer = .true.
    contains
       procedure :: open => output_open

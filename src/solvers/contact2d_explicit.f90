@@ -121,7 +121,7 @@ module contact2d_explicit
       type(growth_guard_t) :: watch        !< the guard's rises in a row (contact2d_growth_guard)
       real(wp) :: time0 = 0                !< time at step0 (dt changes) [s]
       integer(i8) :: step0 = 0             !< step at the last change of dt
-      ! several processes (explicit_distribute, docs/performance.md "Several processes (MPI)"):
+      ! several processes (explicit_distribute, docs/mpi.md):
       ! every array is whole on every rank; rank r sweeps the grid rows row_lo(r) .. row_hi(r),
       ! and after each sweep every rank receives the others' row sums and their values at the
       ! listed dofs, so that the rest of the step (loads, prescribed values, contact, energies,
