@@ -14,6 +14,7 @@ module contact2d_driver
    use contact2d_run_explicit, only: run_explicit
    use contact2d_run_static, only: run_static
    use contact2d_run_exit, only: opath, fail
+   use contact2d_comm, only: comm_init, comm_end, comm_rank, comm_size, comm_barrier
    implicit none
    private
    public :: driver_main
@@ -31,15 +32,21 @@ contains
       character(len=:), allocatable :: errmsg
 
       call system_clock(clock0, rate)
+      ! the processes of mpirun -np N (one without it); the ranks but 0 print nothing and write
+      ! no file: every rank runs the same story on the same data (docs/mpi.md)
+      call comm_init()
+      if (comm_rank() /= 0) call quiet_rank()
       call tuner%begin()  ! the set-up window of the thread tuner (contact2d_threads)
       call cli_parse(cli, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg//' (usage: contact2d --help)')
       if (cli%help) then
          call cli_print_help()
+         call comm_end()
          stop
       end if
       if (cli%version) then
          call cli_print_version()
+         call comm_end()
          stop
       end if
       call read_input(cli, deck)
@@ -47,11 +54,24 @@ contains
       if (stat /= 0) call fail(1, errmsg//deck_blame(deck, errmsg))
       call report_header(cli%deck, cli%output, cli%quiet, deck, model)
       if (deck%solver%method == 'static') then
+         ! (several processes share the explicit engine's rows only)
+         if (comm_size() > 1) call fail(1, "solver:method = 'static' runs as one process (without mpirun)")
          call run_static(deck, model, clock0)
       else
          call run_explicit(cli%output, deck, model, clock0, rate, tuner)
       end if
+      call comm_end()
    end subroutine driver_main
+
+   !> A rank other than 0: its standard output and error go nowhere (rank 0 prints the run's
+   !> lines, which every rank would print alike), and it neither takes the output's lock nor
+   !> writes the file (contact2d_outpath, contact2d_output: writer off).
+   subroutine quiet_rank()
+      use, intrinsic :: iso_fortran_env, only: output_unit, error_unit
+      open (output_unit, file='/dev/null', action='write')
+      open (error_unit, file='/dev/null', action='write')
+      opath%writer = .false.
+   end subroutine quiet_rank
 
    !> The deck (read, validated, --set applied), the output names checked before any set-up
    !> (contact2d_outpath) and the memory the mesh needs.
@@ -66,6 +86,8 @@ contains
       if (len_trim(deck%mesh%file) > 0) mesh_file = beside(cli%deck, trim(deck%mesh%file))
       call opath%check(cli%output, cli%deck, mesh_file, cli%force, deck%output%xdmf, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg)
+      ! every rank has checked the names before rank 0 takes the lock (several processes)
+      call comm_barrier()
       call memory_check(deck, stat, errmsg)
       if (stat /= 0) call fail(1, errmsg//deck_blame(deck, errmsg))
    end subroutine read_input

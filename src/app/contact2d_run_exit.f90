@@ -8,6 +8,7 @@ module contact2d_run_exit
    use contact2d_outpath, only: outpath_t
    use contact2d_output, only: output_t
    use contact2d_sys, only: sys_exit_now
+   use contact2d_comm, only: comm_failing
    implicit none
    private
    public :: opath, keep_partial, fail, fail_now, fail_write, check_output, kept_note, stop_interrupted, run_ended
@@ -27,6 +28,7 @@ contains
       ! one line whatever the message quotes (a --set value with a newline, an escape sequence)
       write (error_unit, '(a)') program_name//': error: '//printable(msg)
       call opath%abandon(keep_partial)
+      call comm_failing()
       stop code, quiet=.true.
    end subroutine fail
 
@@ -48,6 +50,7 @@ contains
       call opath%abandon(keep)
       flush (output_unit)
       flush (error_unit)
+      call comm_failing()
       call sys_exit_now(code)
    end subroutine fail_now
 
@@ -83,6 +86,7 @@ contains
       integer, intent(in) :: signal   !< 2 (SIGINT) or 15 (SIGTERM)
       character(len=*), intent(in) :: msg
       write (error_unit, '(a)') program_name//': interrupted by '//trim(merge('SIGINT ', 'SIGTERM', signal == 2))//msg
+      call comm_failing()
       stop 128 + signal, quiet=.true.
    end subroutine stop_interrupted
 end module contact2d_run_exit

@@ -13,6 +13,7 @@ module contact2d_run_explicit
    use contact2d_initial, only: initial_velocity_apply
    use contact2d_timestep, only: timestep_fallback
    use contact2d_output, only: output_t
+   use contact2d_comm, only: comm_max, comm_rank, comm_size
    use contact2d_sys, only: sys_signals_install, sys_signal_pending, sys_strerror
    use contact2d_threads, only: thread_tuner_t
    use contact2d_stiffness, only: omp_min_nodes
@@ -91,8 +92,15 @@ contains
       type(model_t), intent(in) :: model
       type(explicit_t), intent(inout), target :: solver
       type(state_t), intent(inout), target :: state
+      integer :: stat
+      character(len=:), allocatable :: errmsg
       call solver%init(model%stiff, model%load, model%dt, model%damping, deck%solver%alpha, &
                        deck%solver%damping_interval)
+      ! mpirun -np N: the grid rows shared among the processes (docs/mpi.md)
+      if (comm_size() > 1) then
+         call solver%distribute(comm_size(), comm_rank(), stat, errmsg)
+         if (stat /= 0) call fail(1, errmsg)
+      end if
       ! the guard watches only a step taken from the power estimate (contact2d_timestep)
       solver%guard = model%dt_guarded
       solver%guard_after = loading_end(model)
@@ -112,12 +120,14 @@ contains
       integer :: stat
       character(len=:), allocatable :: errmsg
       call opath%acquire(stat, errmsg)
-      if (stat /= 0) call fail(1, errmsg)
+      ! (several processes: rank 0 alone takes the lock; every rank stops when it failed)
+      if (comm_max(stat) /= 0) call fail(1, errmsg)
       stat = sys_signals_install()
       if (stat /= 0) call fail(2, 'cannot install the SIGINT/SIGTERM handler: '//sys_strerror(stat))
+      out%writer = opath%writer
       call out%open(opath%partial, .false., deck, model, state, stat, errmsg, sidecar=opath%xmf_partial, &
                     target=opath%target)
-      if (stat /= 0) call fail_now(2, errmsg, .false.)   ! nothing readable yet: no file kept
+      if (comm_max(stat) /= 0) call fail_now(2, errmsg, .false.)   ! nothing readable yet: no file kept
       keep_partial = .true.
       call out%attributes_explicit(deck, model, solver%initial_kinetic)
       call out%sample(state, 0.0_wp)
@@ -149,7 +159,8 @@ contains
       t_steps = 0
       t_output = 0
       clock_last_progress = clock1
-      interactive = deck%output%progress .and. isatty(output_unit)
+      ! (not under mpirun: its ranks' output is a pseudo-terminal even when mpirun's is a file)
+      interactive = deck%output%progress .and. isatty(output_unit) .and. comm_size() == 1
       t_load_end = loading_end(model)
       done = .false.
       state%status = 'not converged'
@@ -306,7 +317,7 @@ contains
       ! the small-strain, small-displacement range: measured on the end state, said after the summary
       if (ended) then
          call validity%measure(model%mesh, state%u)
-         call validity%write(out%file)
+         if (out%writer) call validity%write(out%file)
       end if
       call out%finish(model, state, wall, march%timings, stat, errmsg)
       if (stat /= 0) call fail_write(errmsg//'; what was written so far is in '//opath%partial)

@@ -96,6 +96,10 @@ int c2d_signals_install(void) {
 /* The signal number received (0: none). Async-signal-safe read, no side effects. */
 int c2d_signal_pending(void) { return (int)c2d_signal; }
 
+/* Record a signal as if it had arrived here: several processes agree on one that reached any of
+   them (contact2d_explicit), so that each takes the same decision. */
+void c2d_signal_raise(int sig) { c2d_signal = sig; }
+
 /* strerror(err) into buf; the C2D_E* codes in words. */
 void c2d_strerror(int err, char *buf, int len) {
   const char *text;

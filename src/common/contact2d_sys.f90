@@ -7,7 +7,7 @@ module contact2d_sys
    use, intrinsic :: iso_c_binding, only: c_int, c_char, c_long_long, c_null_char, c_int64_t
    implicit none
    private
-   public :: sys_signals_install, sys_signal_pending, sys_strerror, sys_path_info, sys_dir_writable
+   public :: sys_signals_install, sys_signal_pending, sys_signal_raise, sys_strerror, sys_path_info, sys_dir_writable
    public :: sys_lock, sys_unlock, sys_publish, sys_remove, sys_h5_reason, sys_getpid, sys_exit_now, sys_write_file
    public :: sys_lock_check, sys_remove_own, sys_h5_register, sys_h5_claim_failed
    public :: sys_esymlink, sys_enotreg, sys_elinks, sys_enotlock, sys_enotown
@@ -32,6 +32,10 @@ module contact2d_sys
       integer(c_int) function c2d_signal_pending() bind(C, name='c2d_signal_pending')
          import :: c_int
       end function c2d_signal_pending
+      subroutine c2d_signal_raise(sig) bind(C, name='c2d_signal_raise')
+         import :: c_int
+         integer(c_int), value :: sig
+      end subroutine c2d_signal_raise
       subroutine c2d_strerror(err, buf, len) bind(C, name='c2d_strerror')
          import :: c_int, c_char
          integer(c_int), value :: err, len
@@ -112,6 +116,12 @@ contains
    integer function sys_signal_pending() result(sig)
       sig = int(c2d_signal_pending())
    end function sys_signal_pending
+
+   !> Record signal sig as received (several processes: one that reached another rank).
+   subroutine sys_signal_raise(sig)
+      integer, intent(in) :: sig
+      call c2d_signal_raise(int(sig, c_int))
+   end subroutine sys_signal_raise
 
    !> End the process now with the code, without exit handlers (the caller flushes its units).
    subroutine sys_exit_now(code)

@@ -223,7 +223,7 @@ contains
 
    !> One sweep: f = K u, v = v* = ca v - cb M^-1 f, w = u + dt v*, and the partial sums of
    !> this%partial (see the module header).
-   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w, full)
+   subroutine sweep_step(this, stiff, u, v, f, ca, cb, dt, w, full, rows)
       class(sweep_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
@@ -233,9 +233,19 @@ contains
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       !> K u at every node and the sum u~ . K u (default); else only where kept (module header)
       logical, intent(in), optional :: full
+      !> structured meshes: only the grid rows rows(1) .. rows(2) (default all, 0 .. ny), which
+      !> read u on the rows rows(1) - 1 .. rows(2) + 2 only (several processes: contact2d_explicit)
+      integer, intent(in), optional :: rows(2)
       logical :: all_out
+      integer :: j0, j1
       all_out = .true.
       if (present(full)) all_out = full
+      j0 = 0
+      j1 = this%ny
+      if (present(rows)) then
+         j0 = rows(1)
+         j1 = rows(2)
+      end if
       if (this%structured) then
          ! cb M^-1 per class of row, formed once per value of cb: the same bits as cb*minv(p)*f(p)
          if (cb /= this%cb_last) then
@@ -245,7 +255,7 @@ contains
          end if
          call sweep_grid(this%nx, this%ny, this%e, this%cv, this%cs, this%rmass, this%rcbm, this%rclass, &
                          u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
-                         this%scr, this%scr_slot, this%nscr, all_out, this%amc, this%copy)
+                         this%scr, this%scr_slot, this%nscr, all_out, this%amc, this%copy, j0, j1)
       else
          call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial, all_out)
       end if
@@ -267,8 +277,9 @@ contains
    end function sweep_kept
 
    subroutine sweep_grid(nx, ny, e, cv, cs, rmass, rcbm, rclass, u, v, f, ca, dt, w, partial, par, sym, qs, &
-                         scr, scr_slot, nscr, full, amc, copy)
+                         scr, scr_slot, nscr, full, amc, copy, j0, j1)
       integer, intent(in) :: nx, ny
+      integer, intent(in) :: j0, j1   !< the grid rows swept (0 .. ny: all)
       real(wp), intent(in) :: e(2, 4, -1:1, 2, 3), cv(0:7, -3:3, 3, 3), cs(0:7, -3:3, 3, 3)
       ! (contiguous: the rows passed on need no contiguity test or packing per row)
       real(wp), intent(in), contiguous :: rmass(:, :), rcbm(:, :)
@@ -299,7 +310,7 @@ contains
       !$omp parallel do schedule(static) if(par) private(rt, t, k, kn, s0, s1, h, c, i0, d0, d1) &
       !$omp firstprivate(jmade) &
       !$omp num_threads(max(1, min(omp_get_max_threads(), nscr)))
-      do j = 0, ny
+      do j = j0, j1
          rt = row_type(j, ny)
          if (sym .and. rt == 2) then
             t = omp_get_thread_num()

@@ -44,6 +44,9 @@ module contact2d_outpath
       character(len=:), allocatable :: xlock        !< .OUT.xmf.lock ('' without sidecar)
       character(len=:), allocatable :: stale        !< OUT.xmf of the replaced result, to remove
       logical :: force = .false.
+      !> this process writes the output (rank 0 of several, or the only one); the other ranks of
+      !> mpirun take no lock and leave every file alone (docs/mpi.md)
+      logical :: writer = .true.
       !> --force and OUT.h5 existed when the lock was taken: only a run that reaches its end
       !> replaces it (destination)
       logical :: replacing = .false.
@@ -214,6 +217,13 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       integer(c_long_long) :: dev, ino, size
       integer :: err, kind, e
+      if (.not. this%writer) then
+         stat = 0
+         errmsg = ''
+         this%partial = ''
+         this%xmf_partial = ''
+         return
+      end if
       stat = 1
       err = sys_lock(this%lock, this%fd)
       if (err == 11) then   ! EWOULDBLOCK = EAGAIN
@@ -337,6 +347,7 @@ contains
       integer :: err
       stat = 0
       errmsg = ''
+      if (.not. this%writer) return
       if (this%destination(ended) /= this%target) then
          call this%abandon(.true.)
          return
@@ -413,7 +424,7 @@ contains
       class(outpath_t), intent(inout) :: this
       logical, intent(in) :: keep_partial
       integer :: err
-      if (.not. allocated(this%partial)) return
+      if (.not. allocated(this%partial) .or. .not. this%writer) return
       if (len(this%xmf_partial) > 0) err = sys_remove_own(this%xmf_partial)
       if (.not. keep_partial) err = sys_remove_own(this%partial)
       call release(this)

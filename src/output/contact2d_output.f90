@@ -82,6 +82,9 @@ module contact2d_output
       integer :: nsnap = 0                       !< /fields/<step> groups written so far
       integer(i8), allocatable :: snap_step(:)   !< their steps, in the order written
       real(wp), allocatable :: snap_time(:)      !< their times [s] (the sidecar's time series)
+      !> this process writes the file (rank 0 of several, or the only one); on the other ranks of
+      !> mpirun every procedure here returns at once, touching no file (docs/mpi.md)
+      logical :: writer = .true.
    contains
       procedure :: open => output_open
       procedure :: sample => output_sample
@@ -115,6 +118,11 @@ contains
       real(wp), allocatable :: mass(:, :), pvalue(:)
       character(len=parameter_name_len), allocatable :: pname(:)
 
+      if (.not. this%writer) then
+         stat = 0
+         errmsg = ''
+         return
+      end if
       this%xdmf = deck%output%xdmf
       this%xmf_path = sidecar_name(path)
       if (present(sidecar)) this%xmf_path = sidecar
@@ -222,6 +230,7 @@ contains
       type(deck_t), intent(in) :: deck
       type(model_t), intent(in) :: model
       real(wp), intent(in) :: initial_kinetic   !< [mJ]
+      if (.not. this%writer) return
       call this%file%attr(this%file%id, 'method', 'explicit')
       call this%file%attr(this%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
       call this%file%attr(this%file%id, 'dt_limit', trim(deck%solver%dt_limit))
@@ -243,6 +252,7 @@ contains
       real(wp), intent(in) :: snap_missed(:)   !< [s]
       real(wp), intent(in) :: dt_initial       !< [s]
       integer, intent(in) :: fallback_step
+      if (.not. this%writer) return
       if (size(snap_missed) > 0) call this%file%attr(this%file%id, 'snapshot_times_not_reached', snap_missed)
       call this%file%attr(this%file%id, 'dt_initial', dt_initial)
       call this%file%attr(this%file%id, 'dt_fallback_step', fallback_step)
@@ -254,6 +264,7 @@ contains
       class(output_t), intent(inout) :: this
       real(wp), intent(in) :: dist
       logical, intent(in) :: converged
+      if (.not. this%writer) return
       call this%file%attr(this%file%id, 'static_distance_energy', dist)
       call this%file%attr(this%file%id, 'static_converged', merge(1, 0, converged))
    end subroutine output_attributes_compare_static
@@ -264,6 +275,7 @@ contains
       class(output_t), intent(inout) :: this
       type(deck_t), intent(in) :: deck
       type(model_t), intent(in) :: model
+      if (.not. this%writer) return
       call this%file%attr(this%file%id, 'method', 'static')
       call this%file%attr(this%file%id, 'omega_max_element', sqrt(model%stiff%omega2_element))
       call this%file%attr(this%file%id, 'dt_limit', trim(deck%solver%dt_limit))
@@ -282,6 +294,7 @@ contains
       class(output_t), intent(inout) :: this
       type(static_figures_t), intent(in) :: fig
       integer :: i
+      if (.not. this%writer) return
       do i = 1, 4
          call this%file%attr(this%file%id, 'kkt_'//trim(kkt_names(i)), fig%kkt_max(i))
       end do
@@ -306,6 +319,12 @@ contains
       integer(i8) :: now, rate
       integer :: k
       real(wp) :: obstacle_now(3)
+      if (.not. this%writer) then   ! (the per-sample maxima end here on every rank alike)
+         state%contact%stick_increment_max = 0
+         state%contact%status_changes = 0
+         state%contact%penetration_max = 0
+         return
+      end if
       obstacle_now = 0
       if (this%nactive == nseries) then
          obstacle_now(1:2) = state%contact%obstacle%displacement(state%time)
@@ -346,6 +365,7 @@ contains
       integer(hid_t) :: fields, g
       real(wp) :: pressure(state%contact%nc), shear(state%contact%nc)
       integer :: status(state%contact%nc), info
+      if (.not. this%writer) return
       if (this%fields < 0) this%fields = this%file%group(this%file%id, 'fields')
       fields = this%fields
       g = this%file%group(fields, str(state%step))
@@ -375,6 +395,7 @@ contains
    subroutine output_flush_history(this)
       class(output_t), intent(inout) :: this
       integer :: k
+      if (.not. this%writer) return
       if (this%nbuf > 0) then
          do k = 1, this%nactive
             call this%series(k)%append(this%file, this%buffer(1:this%nbuf, k))
@@ -402,6 +423,11 @@ contains
       real(wp) :: dmat(3, 3)
       integer :: e, k, a, b
 
+      if (.not. this%writer) then
+         stat = 0
+         errmsg = ''
+         return
+      end if
       call this%flush_history()
       do k = 1, this%nactive
          call this%series(k)%close(this%file)

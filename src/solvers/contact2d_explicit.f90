@@ -24,6 +24,8 @@ module contact2d_explicit
    use contact2d_layout, only: layout_t
    use contact2d_damping_estimate, only: damping_estimate_t
    use contact2d_growth_guard, only: growth_guard_t
+   use contact2d_comm, only: comm_allgatherv, comm_allgatherv_inplace, comm_halo_start, comm_halo_wait, comm_max
+   use contact2d_sys, only: sys_signal_raise
    implicit none
    private
    public :: explicit_t, damping_none, damping_given, damping_auto
@@ -119,6 +121,24 @@ module contact2d_explicit
       type(growth_guard_t) :: watch        !< the guard's rises in a row (contact2d_growth_guard)
       real(wp) :: time0 = 0                !< time at step0 (dt changes) [s]
       integer(i8) :: step0 = 0             !< step at the last change of dt
+      ! several processes (explicit_distribute, docs/mpi.md):
+      ! every array is whole on every rank; rank r sweeps the grid rows row_lo(r) .. row_hi(r),
+      ! and after each sweep every rank receives the others' row sums and their values at the
+      ! listed dofs, so that the rest of the step (loads, prescribed values, contact, energies,
+      ! the tests that end the loop) is done alike on every rank from the same numbers
+      logical :: split = .false.           !< the rows are shared among several processes
+      integer :: rank = 0                  !< this process (0 .. nproc - 1)
+      integer :: nproc = 1
+      integer, allocatable :: row_lo(:), row_hi(:)   !< (0:nproc - 1) each rank's grid rows
+      integer, allocatable :: q_lo(:), q_hi(:)       !< (0:nproc - 1) its listed dofs (sdof places)
+      !> (0:nproc - 1) the values and offsets of each rank's part of the step's gather (x_) and of
+      !> the whole fields' gather (u_), reals
+      integer, allocatable :: x_count(:), x_displ(:), u_count(:), u_displ(:)
+      real(wp), allocatable :: x_send(:), x_recv(:)
+      !> the halo: this rank's first and last rows of u~ sent (:, 1) below and (:, 2) above, the
+      !> neighbours' rows beside them received, in flight from the sweep of one step to the next
+      real(wp), allocatable :: h_send(:, :), h_recv(:, :)
+      logical :: halo_pending = .false.
    contains
       procedure :: init => explicit_init
       procedure :: advance => explicit_advance
@@ -126,6 +146,7 @@ module contact2d_explicit
       procedure :: residual => explicit_residual
       procedure :: balance_error => explicit_balance_error
       procedure :: set_dt => explicit_set_dt
+      procedure :: distribute => explicit_distribute
    end type explicit_t
 
 contains
@@ -204,13 +225,21 @@ contains
          full = k == nsteps .or. this%s_interior
          if (this%damping == damping_auto) &
             full = full .or. mod(this%step, int(this%damping_interval, i8)) == 0
-         call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full)
+         if (this%split) then
+            call split_sweep(this, stiff, a1*a2inv, dt*a2inv, dt, full)
+         else
+            call this%sweep%step(stiff, this%u, this%v, this%fint, a1*a2inv, dt*a2inv, dt, this%unew, full)
+         end if
          ! the dofs changed below: keep v* and u~, give back v^(n-1/2) (loads, reactions and
          ! the contact step use it)
          call special_keep(this%s_run, this%s_short, this%sdof, this%v, this%unew, this%s_vold, this%s_vstar, this%s_wstar)
          ! automatic damping: a new alpha from (u^n, K u^n), used from the next step on
          if (this%damping == damping_auto) then
-            if (mod(this%step, int(this%damping_interval, i8)) == 0) call this%update_damping(stiff, load)
+            if (mod(this%step, int(this%damping_interval, i8)) == 0) then
+               ! (several processes: the estimate reads u^n and K u^n at every node)
+               if (this%split) call gather_fields(this, this%u, this%fint)
+               call this%update_damping(stiff, load)
+            end if
          end if
          ! loads at t_n (sparse), prescribed values at t_(n+1)
          this%cval = this%cnext
@@ -269,8 +298,16 @@ contains
                                             this%guard_after)
             if (this%growing) exit
          end if
-         if (contact%stat /= 0 .or. sys_signal_pending() /= 0) exit
+         if (this%split) then
+            ! the signal every rank saw in this step's gather (the same decision on every rank)
+            if (contact%stat /= 0 .or. nint(this%x_recv(size(this%x_recv))) /= 0) exit
+         else
+            if (contact%stat /= 0 .or. sys_signal_pending() /= 0) exit
+         end if
       end do
+      ! several processes: every field whole on every rank again (the driver, the output and the
+      ! next call read them), and a signal that reached any rank raised on all
+      if (this%split) call split_end(this)
       ! stopped early after a step that was not full: K u^n and the strain energy of that step
       if (.not. full) then
          call stiff%apply(this%unew, this%fint)
@@ -282,6 +319,222 @@ contains
       if (.not. this%blown_up) &
          this%strain_step = 0.5_wp*sum(this%unew(:, 1:this%layout%nowned)*this%fint(:, 1:this%layout%nowned))
    end subroutine explicit_advance
+
+   !> Share the grid rows of a structured mesh among nproc processes (this one rank): blocks of
+   !> whole rows, in order, so that every row's energy sums are formed by one rank exactly as by
+   !> one process, and added in the same order on every rank (the same bits for any nproc).
+   !> stat /= 0 with a one-line errmsg for a mesh that is not a grid or has too few rows.
+   subroutine explicit_distribute(this, nproc, rank, stat, errmsg)
+      class(explicit_t), intent(inout) :: this
+      integer, intent(in) :: nproc, rank
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: r, nrow
+      character(len=12) :: a, b
+      stat = 1
+      if (.not. this%sweep%structured) then
+         errmsg = 'several processes (mpirun) need the built-in mesh (mesh:file names a Gmsh mesh; '// &
+                  'run it as one process)'
+         return
+      end if
+      write (a, '(i0)') nproc
+      write (b, '(i0)') this%sweep%ny + 1
+      if (this%sweep%ny + 1 < 2*nproc) then
+         errmsg = 'mpirun -np '//trim(a)//': the mesh has '//trim(b)//' grid rows, at least two per process needed'
+         return
+      end if
+      stat = 0
+      errmsg = ''
+      this%split = nproc > 1
+      this%nproc = nproc
+      this%rank = rank
+      nrow = 2*(this%sweep%nx + 1)
+      allocate (this%row_lo(0:nproc - 1), this%row_hi(0:nproc - 1), this%u_count(0:nproc - 1), this%u_displ(0:nproc - 1))
+      do r = 0, nproc - 1
+         this%row_lo(r) = (r*(this%sweep%ny + 1))/nproc
+         this%row_hi(r) = ((r + 1)*(this%sweep%ny + 1))/nproc - 1
+         this%u_count(r) = nrow*(this%row_hi(r) - this%row_lo(r) + 1)
+         this%u_displ(r) = nrow*this%row_lo(r)
+      end do
+      allocate (this%h_send(nrow, 2), this%h_recv(nrow, 2))
+      this%h_send = 0
+      this%h_recv = 0
+      ! the listed dofs' shares follow when they are known (split_dofs, from the next advance)
+      this%s_ncontact = -1
+   end subroutine explicit_distribute
+
+   !> Each rank's places of the listed dofs (sdof is in dof order, so a rank's are consecutive)
+   !> and the sizes of the step's gather: its rows' four sums, its listed dofs' v*, u~ and K u,
+   !> and the signal it has seen.
+   subroutine split_dofs(this)
+      type(explicit_t), intent(inout) :: this
+      integer :: r, q, row, n
+      allocate (this%q_lo(0:this%nproc - 1), this%q_hi(0:this%nproc - 1), this%x_count(0:this%nproc - 1), &
+                this%x_displ(0:this%nproc - 1))
+      q = 1
+      n = 0
+      do r = 0, this%nproc - 1
+         this%q_lo(r) = q
+         do while (q <= size(this%sdof))
+            row = ((this%sdof(q) - 1)/2)/(this%sweep%nx + 1)
+            if (row > this%row_hi(r)) exit
+            q = q + 1
+         end do
+         this%q_hi(r) = q - 1
+         this%x_count(r) = 4*(this%row_hi(r) - this%row_lo(r) + 1) + 3*(this%q_hi(r) - this%q_lo(r) + 1) + 1
+         this%x_displ(r) = n
+         n = n + this%x_count(r)
+      end do
+      allocate (this%x_send(this%x_count(this%rank)), this%x_recv(n))
+   end subroutine split_dofs
+
+   !> The sweep of this rank's rows (several processes). The rows beside them, sent by the
+   !> neighbours during the last step, are put into u first (halo_merge); then this rank's first
+   !> and last rows are swept and sent to the neighbours (MPI_Isend/Irecv, halo_start), and the
+   !> inside rows swept while they travel; then the step's gather. Rows lo and hi read u on the
+   !> rows lo - 1 and hi + 1 (a row reads u on j - 1 .. j + 2, contact2d_sweep; row hi's j + 2
+   !> value only forms what the next row would reuse, and no row after it does: never used).
+   subroutine split_sweep(this, stiff, ca, cb, dt, full)
+      type(explicit_t), intent(inout) :: this
+      type(stiffness_t), intent(in) :: stiff
+      real(wp), intent(in) :: ca, cb, dt
+      logical, intent(in) :: full
+      integer :: lo, hi, rows(2)
+      lo = this%row_lo(this%rank)
+      hi = this%row_hi(this%rank)
+      if (this%halo_pending) call halo_merge(this)
+      rows(1) = lo
+      rows(2) = lo
+      call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
+      rows(1) = hi
+      rows(2) = hi
+      call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
+      call halo_start(this)
+      rows(1) = lo + 1
+      rows(2) = hi - 1
+      if (rows(2) >= rows(1)) call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
+      call split_gather(this, this%sweep%partial, this%v, this%unew, this%fint)
+   end subroutine split_sweep
+
+   !> After the sweep (several processes): every rank's row sums and v*, u~, K u at its listed
+   !> dofs, and the signal it has seen (the largest wins), put in place on every rank.
+   subroutine split_gather(this, partial, v, w, f)
+      type(explicit_t), intent(inout) :: this
+      real(wp), intent(inout) :: partial(4, 0:*), v(*), w(*), f(*)
+      integer :: r, k, q, d, j
+      ! (loops, not reshape or constructors: the step allocates nothing)
+      k = 0
+      do j = this%row_lo(this%rank), this%row_hi(this%rank)
+         this%x_send(k + 1) = partial(1, j)
+         this%x_send(k + 2) = partial(2, j)
+         this%x_send(k + 3) = partial(3, j)
+         this%x_send(k + 4) = partial(4, j)
+         k = k + 4
+      end do
+      do q = this%q_lo(this%rank), this%q_hi(this%rank)
+         d = this%sdof(q)
+         this%x_send(k + 1) = v(d)
+         this%x_send(k + 2) = w(d)
+         this%x_send(k + 3) = f(d)
+         k = k + 3
+      end do
+      this%x_send(k + 1) = real(sys_signal_pending(), wp)
+      call comm_allgatherv(this%x_send, this%x_recv, this%x_count, this%x_displ)
+      do r = 0, this%nproc - 1
+         k = this%x_displ(r)
+         if (r /= this%rank) then
+            do j = this%row_lo(r), this%row_hi(r)
+               partial(1, j) = this%x_recv(k + 1)
+               partial(2, j) = this%x_recv(k + 2)
+               partial(3, j) = this%x_recv(k + 3)
+               partial(4, j) = this%x_recv(k + 4)
+               k = k + 4
+            end do
+            do q = this%q_lo(r), this%q_hi(r)
+               d = this%sdof(q)
+               v(d) = this%x_recv(k + 1)
+               w(d) = this%x_recv(k + 2)
+               f(d) = this%x_recv(k + 3)
+               k = k + 3
+            end do
+         end if
+         ! the last value of the gather: the largest signal of all ranks
+         this%x_recv(size(this%x_recv)) = max(this%x_recv(size(this%x_recv)), this%x_recv(this%x_displ(r) + this%x_count(r)))
+      end do
+   end subroutine split_gather
+
+   !> Send this rank's first and last rows of u~ (just swept) to the ranks below and above and
+   !> receive theirs (non-blocking; halo_merge waits). Sent from copies: the step changes u~ at
+   !> the listed dofs before the messages are done.
+   subroutine halo_start(this)
+      type(explicit_t), intent(inout) :: this
+      integer :: nrow, lo, hi, below, above
+      nrow = 2*(this%sweep%nx + 1)
+      lo = this%row_lo(this%rank)
+      hi = this%row_hi(this%rank)
+      below = merge(this%rank - 1, -1, this%rank > 0)
+      above = merge(this%rank + 1, -1, this%rank < this%nproc - 1)
+      call flat_copy(nrow, this%unew, lo*nrow, this%h_send(:, 1))
+      call flat_copy(nrow, this%unew, hi*nrow, this%h_send(:, 2))
+      call comm_halo_start(this%h_send, this%h_recv, nrow, below, above)
+      this%halo_pending = .true.
+   end subroutine halo_start
+
+   !> The neighbours' rows of u~ received (halo_start of the last step) put into u beside this
+   !> rank's rows, but at the listed dofs: those every rank has already changed alike (loads,
+   !> prescribed values, contact), so that u there is u^(n+1) of every rank.
+   subroutine halo_merge(this)
+      type(explicit_t), intent(inout) :: this
+      integer :: nrow, lo, hi
+      call comm_halo_wait(this%h_recv)
+      this%halo_pending = .false.
+      nrow = 2*(this%sweep%nx + 1)
+      lo = this%row_lo(this%rank)
+      hi = this%row_hi(this%rank)
+      if (this%rank > 0) call merge_row(nrow, this%h_recv(:, 1), this%s_other, (lo - 1)*nrow, this%u)
+      if (this%rank < this%nproc - 1) call merge_row(nrow, this%h_recv(:, 2), this%s_other, (hi + 1)*nrow, this%u)
+   end subroutine halo_merge
+
+   !> b(1:n) = a(o + 1 : o + n) (flattened a).
+   subroutine flat_copy(n, a, o, b)
+      integer, intent(in) :: n, o
+      real(wp), intent(in) :: a(*)
+      real(wp), intent(out) :: b(n)
+      b = a(o + 1:o + n)
+   end subroutine flat_copy
+
+   !> u(o + p) = row(p) where other(o + p) = 1 (not a listed dof), p = 1 .. n (flattened u).
+   subroutine merge_row(n, row, other, o, u)
+      integer, intent(in) :: n, o
+      real(wp), intent(in) :: row(n)
+      integer(int8), intent(in) :: other(*)
+      real(wp), intent(inout) :: u(*)
+      integer :: p
+      do p = 1, n
+         if (other(o + p) == 1) u(o + p) = row(p)
+      end do
+   end subroutine merge_row
+
+   !> Two fields made whole on every rank: each rank's rows to all (in place).
+   subroutine gather_fields(this, a, b)
+      type(explicit_t), intent(in) :: this
+      real(wp), intent(inout) :: a(*), b(*)
+      call comm_allgatherv_inplace(a, this%u_count, this%u_displ)
+      call comm_allgatherv_inplace(b, this%u_count, this%u_displ)
+   end subroutine gather_fields
+
+   !> The end of an advance call with several processes: the halo in flight received, u, u^n
+   !> (unew after the swap), v and K u whole on every rank, and a signal any rank has seen
+   !> raised on every rank (the driver's tests of it then agree).
+   subroutine split_end(this)
+      type(explicit_t), intent(inout) :: this
+      integer :: sig
+      if (this%halo_pending) call halo_merge(this)
+      call gather_fields(this, this%u, this%unew)
+      call gather_fields(this, this%v, this%fint)
+      sig = comm_max(sys_signal_pending())
+      if (sig /= 0) call sys_signal_raise(sig)
+   end subroutine split_end
 
    !> The dofs whose u~ is changed after the sweep: loaded, prescribed and contact-node dofs,
    !> each once, in dof order.
@@ -359,6 +612,10 @@ contains
       do i = 1, r
          if (runs(3, i) < long_run) this%s_short = [this%s_short, [(runs(2, i) + j, j=0, runs(3, i) - 1)]]
       end do
+      if (this%split) then
+         if (allocated(this%q_lo)) deallocate (this%q_lo, this%q_hi, this%x_count, this%x_displ, this%x_send, this%x_recv)
+         call split_dofs(this)
+      end if
    end subroutine special_dofs
 
    !> The prescribed values at t_(n+1): w(dof(p)) = c(curve(p)), in load order (flattened w).
