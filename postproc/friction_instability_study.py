@@ -20,8 +20,9 @@ Each speed is printed against the shear wave speed c_s = sqrt(G/rho), the plane-
 speed and the Rayleigh speed c_R (the root of Rayleigh's equation for the material's nu, computed
 here). Prints the table (mesh convergence over the levels, time-step convergence over the
 dt factors) and writes it to <out>/friction_instability.csv; draws the space-time map of the slip
-velocity (x along the contact, t up; a diverging colour map, stick = 0 in black) of every level
-at the first dt factor into <figures>/friction_instability.png (--figures defaults to --out; the
+velocity (x along the contact, t up from just before the interface sticks; a diverging colour
+map, stick = 0 in black; the detachment onsets and lines at c_R, c_s, c_p from the first one) of
+every level at the first dt factor into <figures>/friction_instability.png (--figures defaults to --out; the
 tracked one: --figures docs/figures --force).
 
 The table and figure already there are refused before any run (one line, exit 2) unless --force;
@@ -141,13 +142,14 @@ def figure(maps, args):
                 tt = np.array([t0, t0 + (x[-1] - x0) / c[name]])
                 ax.plot(x0 + c[name] * (tt - t0), tt * 1e6, style, color="lime", lw=1.0, label=name)
         ax.set_xlim(x[0], x[-1])
+        ax.set_ylim(pf["t_stick"] * 1e6 - 0.5, t[-1] * 1e6)   # from just before the stuck state on
         ax.set_xlabel("x along the contact [mm]")
         ax.set_title("level %d (h = %.4g mm), dt = %g dt_crit" % (level, np.min(np.diff(x)), factor), fontsize=9)
     axes[0][0].set_ylabel("t [us]")
-    axes[0][0].legend(fontsize=7, loc="upper right")
+    axes[0][0].legend(fontsize=7, loc="lower right", framealpha=0.9)
     fig.colorbar(mesh, ax=axes[0].tolist(), label="slip velocity / V (stick = 0: black)", shrink=0.8)
     path = args.figures / "friction_instability.png"
-    save_figure(fig, path, args.force, dpi=90)
+    save_figure(fig, path, args.force, dpi=75)
     print("wrote %s" % path)
 
 
