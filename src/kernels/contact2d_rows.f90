@@ -39,7 +39,7 @@ module contact2d_rows
    use contact2d_mesh, only: node_elements
    implicit none
    private
-   public :: rows_t
+   public :: rows_t, chunk_rows
 
    !> Column slots of a group of four rows (1, 2, 3, 4 = a, b, c, d: the nodes of one element in
    !> their cyclic order where contact2d_renumber found one): slots 1-4 for all four rows, 5-6 for
@@ -83,6 +83,9 @@ module contact2d_rows
       logical, allocatable :: kept(:)
       !> the kept rows of chunk c are krow(kstart(c) : kstart(c + 1) - 1), in increasing order
       integer, allocatable :: kstart(:), krow(:)
+      !> the lowest and highest node whose u the rows of chunk c read, reach(:, c) (several
+      !> processes: a rank's halo is what its chunks reach beyond its own nodes, docs/mpi.md)
+      integer, allocatable :: reach(:, :)
    contains
       procedure :: init => rows_init
       procedure :: parts => rows_parts
@@ -229,6 +232,20 @@ contains
          end do
       end do
       this%kstart(nc + 1) = nx + 1
+      ! the nodes each chunk's products read (a group's free slots point at its own first node)
+      allocate (this%reach(2, nc))
+      do c = 1, nc
+         this%reach(1, c) = (c - 1)*chunk_rows + 1
+         this%reach(2, c) = min(c*chunk_rows, this%nnode)
+         do k = (this%reach(1, c) + group_rows - 1)/group_rows, (this%reach(2, c) + group_rows - 1)/group_rows
+            this%reach(1, c) = min(this%reach(1, c), minval(this%col(:, k))/4 + 1)
+            this%reach(2, c) = max(this%reach(2, c), maxval(this%col(:, k))/4 + 1)
+         end do
+         do t = this%xstart((c - 1)*chunk_rows + 1), this%xstart(min(c*chunk_rows, this%nnode) + 1) - 1
+            this%reach(1, c) = min(this%reach(1, c), this%xcol(t)/4 + 1)
+            this%reach(2, c) = max(this%reach(2, c), this%xcol(t)/4 + 1)
+         end do
+      end do
    contains
       !> Column a goes before column b: more rows, or as many and a lower node.
       logical function before(a, b)
@@ -281,8 +298,10 @@ contains
    !> dofs v* = ca v - cb M^-1 f (written into v), w = u + dt v* and the chunk's partial sums
    !>    (sum m v*^2, 0, sum w . f, sum m (v* - v)^2: the second sum left to the caller)
    !> (the quantities of contact2d_sweep's module header). full = .false.: f only at the kept
-   !> rows, and the third sum left zero (module header).
-   subroutine rows_sweep(this, u, v, f, ca, cb, dt, w, partial, full)
+   !> rows, and the third sum left zero (module header). chunks: only the chunks chunks(1) ..
+   !> chunks(2) (default all), which read u at the nodes of their reach only (several
+   !> processes: contact2d_explicit); each chunk's values and sums are those of the whole sweep.
+   subroutine rows_sweep(this, u, v, f, ca, cb, dt, w, partial, full, chunks)
       class(rows_t), intent(inout), target :: this
       real(wp), intent(in) :: u(:, :)       !< u^n (2, nnode) [mm]
       real(wp), intent(inout) :: v(:, :)    !< v^(n-1/2) in, v* out [mm/s]
@@ -291,20 +310,33 @@ contains
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       real(wp), intent(inout) :: partial(:, :)   !< (4, rows_parts)
       logical, intent(in) :: full           !< K u at every node and the sum u~ . K u
-      integer :: ud0
+      integer, intent(in), optional :: chunks(2)
+      integer :: ud0, c0, c1, s0, s1
       ! the first element of ud on a 64-byte boundary (where the array is now)
       ud0 = int(modulo(-transfer(c_loc(this%ud(1)), 0_c_intptr_t), 64_c_intptr_t)/8)
+      c0 = 1
+      c1 = size(this%reach, 2)
+      s0 = 1
+      s1 = this%nnode
+      if (present(chunks)) then
+         c0 = chunks(1)
+         c1 = chunks(2)
+         if (c1 < c0) return
+         s0 = minval(this%reach(1, c0:c1))
+         s1 = maxval(this%reach(2, c0:c1))
+      end if
       call sweep_chunks(this%nnode, this%ngroup, size(this%xcol), this%col, this%blk, this%xstart, this%xcol, &
                         this%xrow, this%xblk, &
                         u, v, f, this%mdof, this%minvdof, ca, cb, dt, w, partial, this%ud(ud0 + 1:), &
-                        this%nnode >= omp_min_nodes, full, size(this%krow), this%kstart, this%krow)
+                        this%nnode >= omp_min_nodes, full, size(this%krow), this%kstart, this%krow, c0, c1, s0, s1)
    end subroutine rows_sweep
 
-   !> The chunks, shared among threads (explicit-shape arrays: unit strides known to the compiler):
-   !> first every chunk's nodes into ud, then (all of ud being needed by the products) the rows.
+   !> The chunks c0 .. c1, shared among threads (explicit-shape arrays: unit strides known to the
+   !> compiler): first the nodes s0 .. s1 (those the chunks read) into ud, by pieces of chunk_rows,
+   !> then (all of them being needed by the products) the rows.
    subroutine sweep_chunks(nnode, ngroup, nx, col, blk, xstart, xcol, xrow, xblk, u, v, f, mdof, minvdof, ca, cb, &
-                           dt, w, partial, ud, par, full, nk, kstart, krow)
-      integer, intent(in) :: nnode, ngroup, nx, nk
+                           dt, w, partial, ud, par, full, nk, kstart, krow, c0, c1, s0, s1)
+      integer, intent(in) :: nnode, ngroup, nx, nk, c0, c1, s0, s1
       integer(int32), intent(in) :: col(group_width, ngroup), xcol(nx)
       real(wp), intent(in) :: blk(4, group_blocks, ngroup), xblk(4, nx)
       integer, intent(in) :: xstart(nnode + 1), xrow(nx), kstart(*), krow(nk)
@@ -317,14 +349,14 @@ contains
       real(wp) :: g(2*chunk_rows)
       !$omp parallel if(par) private(r0, r1, k, r, g)
       !$omp do schedule(static)
-      do c = 1, (nnode + chunk_rows - 1)/chunk_rows
-         r0 = (c - 1)*chunk_rows + 1
-         r1 = min(c*chunk_rows, nnode)
+      do c = 1, (s1 - s0 + chunk_rows)/chunk_rows
+         r0 = s0 + (c - 1)*chunk_rows
+         r1 = min(s0 + c*chunk_rows - 1, s1)
          call spread_u(r0, r1, u(2*r0 - 1), ud(4*r0 - 3))
       end do
       !$omp end do
       !$omp do schedule(dynamic)
-      do c = 1, (nnode + chunk_rows - 1)/chunk_rows
+      do c = c0, c1
          r0 = (c - 1)*chunk_rows + 1
          r1 = min(c*chunk_rows, nnode)
          if (full) then

@@ -233,8 +233,10 @@ contains
       real(wp), intent(inout) :: w(:, :)    !< u~ out [mm]
       !> K u at every node and the sum u~ . K u (default); else only where kept (module header)
       logical, intent(in), optional :: full
-      !> structured meshes: only the grid rows rows(1) .. rows(2) (default all, 0 .. ny), which
-      !> read u on the rows rows(1) - 1 .. rows(2) + 2 only (several processes: contact2d_explicit)
+      !> only the parts rows(1) .. rows(2), counted from 0 (default all): structured meshes the
+      !> grid rows (0 .. ny), which read u on the rows rows(1) - 1 .. rows(2) + 2 only; general
+      !> meshes the chunks rows(1) + 1 .. rows(2) + 1 of contact2d_rows, which read u on their
+      !> reach only (several processes: contact2d_explicit)
       integer, intent(in), optional :: rows(2)
       logical :: all_out
       integer :: j0, j1
@@ -257,7 +259,11 @@ contains
                          u, v, f, ca, dt, w, this%partial, stiff%nnode >= omp_min_nodes, this%sym, this%qs, &
                          this%scr, this%scr_slot, this%nscr, all_out, this%amc, this%copy, j0, j1)
       else
-         call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial, all_out)
+         if (present(rows)) then
+            call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial, all_out, rows + 1)
+         else
+            call this%rows%sweep(u, v, f, ca, cb, dt, w, this%partial, all_out)
+         end if
       end if
    end subroutine sweep_step
 

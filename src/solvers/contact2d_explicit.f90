@@ -21,6 +21,7 @@ module contact2d_explicit
    use contact2d_contact, only: contact_t
    use contact2d_sys, only: sys_signal_pending
    use contact2d_sweep, only: sweep_t
+   use contact2d_rows, only: chunk_rows
    use contact2d_layout, only: layout_t
    use contact2d_damping_estimate, only: damping_estimate_t
    use contact2d_growth_guard, only: growth_guard_t
@@ -122,22 +123,34 @@ module contact2d_explicit
       real(wp) :: time0 = 0                !< time at step0 (dt changes) [s]
       integer(i8) :: step0 = 0             !< step at the last change of dt
       ! several processes (explicit_distribute, docs/mpi.md):
-      ! every array is whole on every rank; rank r sweeps the grid rows row_lo(r) .. row_hi(r),
-      ! and after each sweep every rank receives the others' row sums and their values at the
-      ! listed dofs, so that the rest of the step (loads, prescribed values, contact, energies,
-      ! the tests that end the loop) is done alike on every rank from the same numbers
+      ! every array is whole on every rank; rank r sweeps the parts row_lo(r) .. row_hi(r) (grid
+      ! rows of the built-in mesh, chunks of block rows of a Gmsh mesh: contact2d_sweep), that is
+      ! the nodes n_lo(r) .. n_hi(r), and after each sweep every rank receives the others' part
+      ! sums and their values at the listed dofs, so that the rest of the step (loads, prescribed
+      ! values, contact, energies, the tests that end the loop) is done alike on every rank from
+      ! the same numbers
       logical :: split = .false.           !< the rows are shared among several processes
       integer :: rank = 0                  !< this process (0 .. nproc - 1)
       integer :: nproc = 1
-      integer, allocatable :: row_lo(:), row_hi(:)   !< (0:nproc - 1) each rank's grid rows
+      !> (0:nproc - 1) each rank's parts (counted from 0: partial(:, j + 1) of the sweep)
+      integer, allocatable :: row_lo(:), row_hi(:)
+      integer, allocatable :: n_lo(:), n_hi(:)       !< (0:nproc - 1) each rank's nodes
+      !> this rank's halo, as node ranges: h_lo(k) .. h_hi(k) received from the rank below (k = 1)
+      !> and above (k = 2), s_lo(k) .. s_hi(k) of its own sent to them (empty: hi < lo)
+      integer :: h_lo(2) = 1, h_hi(2) = 0, s_lo(2) = 1, s_hi(2) = 0
+      !> the parts swept before the halo is sent: row_lo .. e_lo (the nodes sent below) and
+      !> e_hi .. row_hi (sent above); the others are swept while it travels
+      integer :: e_lo = -1, e_hi = 0
       integer, allocatable :: q_lo(:), q_hi(:)       !< (0:nproc - 1) its listed dofs (sdof places)
       !> (0:nproc - 1) the values and offsets of each rank's part of the step's gather (x_) and of
       !> the whole fields' gather (u_), reals
       integer, allocatable :: x_count(:), x_displ(:), u_count(:), u_displ(:)
       real(wp), allocatable :: x_send(:), x_recv(:)
-      !> the halo: this rank's first and last rows of u~ sent (:, 1) below and (:, 2) above, the
-      !> neighbours' rows beside them received, in flight from the sweep of one step to the next
+      !> the halo: this rank's nodes of u~ that its neighbours read sent (:, 1) below and (:, 2)
+      !> above, the neighbours' nodes that it reads received, in flight from the sweep of one step
+      !> to the next (every message h_n reals, the largest halo of the run)
       real(wp), allocatable :: h_send(:, :), h_recv(:, :)
+      integer :: h_n = 0
       logical :: halo_pending = .false.
    contains
       procedure :: init => explicit_init
@@ -320,43 +333,100 @@ contains
          this%strain_step = 0.5_wp*sum(this%unew(:, 1:this%layout%nowned)*this%fint(:, 1:this%layout%nowned))
    end subroutine explicit_advance
 
-   !> Share the grid rows of a structured mesh among nproc processes (this one rank): blocks of
-   !> whole rows, in order, so that every row's energy sums are formed by one rank exactly as by
-   !> one process, and added in the same order on every rank (the same bits for any nproc).
-   !> stat /= 0 with a one-line errmsg for a mesh that is not a grid or has too few rows.
+   !> Share the mesh among nproc processes (this one rank), so that every part's energy sums
+   !> are formed by one rank exactly as by one process and added in the same order on every rank
+   !> (the same bits for any nproc): the built-in mesh by blocks of whole grid rows, in order; a
+   !> Gmsh mesh by contiguous ranges of whole chunks of block rows (contact2d_rows; its nodes
+   !> renumbered by contact2d_renumber, so a chunk's rows reach only nearby nodes), each rank's
+   !> halo the nodes its chunks reach beyond its own, which must be the neighbours' (docs/mpi.md).
+   !> stat /= 0 with a one-line errmsg for a mesh too small for nproc.
    subroutine explicit_distribute(this, nproc, rank, stat, errmsg)
       class(explicit_t), intent(inout) :: this
       integer, intent(in) :: nproc, rank
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      integer :: r, nrow
-      character(len=12) :: a, b
+      integer :: r, nparts, npn
+      integer, allocatable :: g_lo(:), g_hi(:)
+      character(len=12) :: a, b, c
       stat = 1
-      if (.not. this%sweep%structured) then
-         errmsg = 'several processes (mpirun) need the built-in mesh (mesh:file names a Gmsh mesh; '// &
-                  'run it as one process)'
-         return
-      end if
       write (a, '(i0)') nproc
-      write (b, '(i0)') this%sweep%ny + 1
-      if (this%sweep%ny + 1 < 2*nproc) then
-         errmsg = 'mpirun -np '//trim(a)//': the mesh has '//trim(b)//' grid rows, at least two per process needed'
-         return
+      allocate (this%row_lo(0:nproc - 1), this%row_hi(0:nproc - 1), this%n_lo(0:nproc - 1), this%n_hi(0:nproc - 1), &
+                g_lo(0:nproc - 1), g_hi(0:nproc - 1))
+      if (this%sweep%structured) then
+         write (b, '(i0)') this%sweep%ny + 1
+         if (this%sweep%ny + 1 < 2*nproc) then
+            errmsg = 'mpirun -np '//trim(a)//': the mesh has '//trim(b)//' grid rows, at least two per process needed'
+            return
+         end if
+         nparts = this%sweep%ny + 1
+         npn = this%sweep%nx + 1   ! nodes per part
+      else
+         nparts = size(this%sweep%rows%reach, 2)
+         npn = chunk_rows
+         write (b, '(i0)') this%nnode
+         write (c, '(i0)') nparts
+         if (nparts < nproc) then
+            errmsg = 'mpirun -np '//trim(a)//': the mesh has '//trim(b)//' nodes, '//trim(c)// &
+                     ' chunks of block rows, at least one per process needed'
+            return
+         end if
       end if
+      do r = 0, nproc - 1
+         this%row_lo(r) = (r*nparts)/nproc
+         this%row_hi(r) = ((r + 1)*nparts)/nproc - 1
+         this%n_lo(r) = this%row_lo(r)*npn + 1
+         this%n_hi(r) = min((this%row_hi(r) + 1)*npn, this%nnode)
+         if (this%sweep%structured) then
+            ! a grid row reads u on the rows beside it (contact2d_sweep)
+            g_lo(r) = max(this%n_lo(r) - npn, 1)
+            g_hi(r) = min(this%n_hi(r) + npn, this%nnode)
+         else
+            g_lo(r) = minval(this%sweep%rows%reach(1, this%row_lo(r) + 1:this%row_hi(r) + 1))
+            g_hi(r) = maxval(this%sweep%rows%reach(2, this%row_lo(r) + 1:this%row_hi(r) + 1))
+         end if
+      end do
+      ! each rank's reach within its neighbours' nodes: the halo comes from them alone
+      do r = 0, nproc - 1
+         if (g_lo(r) < this%n_lo(max(r - 1, 0)) .or. g_hi(r) > this%n_hi(min(r + 1, nproc - 1))) then
+            errmsg = 'mpirun -np '//trim(a)//': the mesh has '//trim(b)//' nodes, too few for '//trim(a)// &
+                     ' processes (the rows of one reach beyond its neighbours'' nodes)'
+            return
+         end if
+      end do
       stat = 0
       errmsg = ''
       this%split = nproc > 1
       this%nproc = nproc
       this%rank = rank
-      nrow = 2*(this%sweep%nx + 1)
-      allocate (this%row_lo(0:nproc - 1), this%row_hi(0:nproc - 1), this%u_count(0:nproc - 1), this%u_displ(0:nproc - 1))
-      do r = 0, nproc - 1
-         this%row_lo(r) = (r*(this%sweep%ny + 1))/nproc
-         this%row_hi(r) = ((r + 1)*(this%sweep%ny + 1))/nproc - 1
-         this%u_count(r) = nrow*(this%row_hi(r) - this%row_lo(r) + 1)
-         this%u_displ(r) = nrow*this%row_lo(r)
+      allocate (this%u_count(0:nproc - 1), this%u_displ(0:nproc - 1))
+      this%u_count = 2*(this%n_hi - this%n_lo + 1)
+      this%u_displ = 2*(this%n_lo - 1)
+      ! the halo of this rank: what it reads of its neighbours' nodes, what they read of its own
+      this%h_n = 0
+      do r = 1, nproc - 1
+         this%h_n = max(this%h_n, 2*(this%n_lo(r) - g_lo(r)), 2*(g_hi(r - 1) - this%n_hi(r - 1)))
       end do
-      allocate (this%h_send(nrow, 2), this%h_recv(nrow, 2))
+      this%h_lo = 1
+      this%h_hi = 0
+      this%s_lo = 1
+      this%s_hi = 0
+      this%e_lo = this%row_lo(rank) - 1
+      this%e_hi = this%row_hi(rank) + 1
+      if (rank > 0) then
+         this%h_lo(1) = g_lo(rank)
+         this%h_hi(1) = this%n_lo(rank) - 1
+         this%s_lo(1) = this%n_lo(rank)
+         this%s_hi(1) = g_hi(rank - 1)
+         this%e_lo = max((this%s_hi(1) - 1)/npn, this%row_lo(rank))
+      end if
+      if (rank < nproc - 1) then
+         this%h_lo(2) = this%n_hi(rank) + 1
+         this%h_hi(2) = g_hi(rank)
+         this%s_lo(2) = g_lo(rank + 1)
+         this%s_hi(2) = this%n_hi(rank)
+         this%e_hi = min((this%s_lo(2) - 1)/npn, this%row_hi(rank))
+      end if
+      allocate (this%h_send(max(this%h_n, 1), 2), this%h_recv(max(this%h_n, 1), 2))
       this%h_send = 0
       this%h_recv = 0
       ! the listed dofs' shares follow when they are known (split_dofs, from the next advance)
@@ -364,11 +434,11 @@ contains
    end subroutine explicit_distribute
 
    !> Each rank's places of the listed dofs (sdof is in dof order, so a rank's are consecutive)
-   !> and the sizes of the step's gather: its rows' four sums, its listed dofs' v*, u~ and K u,
+   !> and the sizes of the step's gather: its parts' four sums, its listed dofs' v*, u~ and K u,
    !> and the signal it has seen.
    subroutine split_dofs(this)
       type(explicit_t), intent(inout) :: this
-      integer :: r, q, row, n
+      integer :: r, q, n
       allocate (this%q_lo(0:this%nproc - 1), this%q_hi(0:this%nproc - 1), this%x_count(0:this%nproc - 1), &
                 this%x_displ(0:this%nproc - 1))
       q = 1
@@ -376,8 +446,7 @@ contains
       do r = 0, this%nproc - 1
          this%q_lo(r) = q
          do while (q <= size(this%sdof))
-            row = ((this%sdof(q) - 1)/2)/(this%sweep%nx + 1)
-            if (row > this%row_hi(r)) exit
+            if ((this%sdof(q) - 1)/2 + 1 > this%n_hi(r)) exit
             q = q + 1
          end do
          this%q_hi(r) = q - 1
@@ -388,12 +457,12 @@ contains
       allocate (this%x_send(this%x_count(this%rank)), this%x_recv(n))
    end subroutine split_dofs
 
-   !> The sweep of this rank's rows (several processes). The rows beside them, sent by the
-   !> neighbours during the last step, are put into u first (halo_merge); then this rank's first
-   !> and last rows are swept and sent to the neighbours (MPI_Isend/Irecv, halo_start), and the
-   !> inside rows swept while they travel; then the step's gather. Rows lo and hi read u on the
-   !> rows lo - 1 and hi + 1 (a row reads u on j - 1 .. j + 2, contact2d_sweep; row hi's j + 2
-   !> value only forms what the next row would reuse, and no row after it does: never used).
+   !> The sweep of this rank's parts (several processes). The nodes beside them, sent by the
+   !> neighbours during the last step, are put into u first (halo_merge); then the parts that
+   !> hold the nodes the neighbours read are swept and sent to them (MPI_Isend/Irecv,
+   !> halo_start), and the inside parts swept while they travel; then the step's gather. The
+   !> parts read u on their reach only (contact2d_sweep; a grid row's j + 2 value of the last
+   !> row only forms what the next row would reuse, and no row after it does: never used).
    subroutine split_sweep(this, stiff, ca, cb, dt, full)
       type(explicit_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
@@ -403,16 +472,24 @@ contains
       lo = this%row_lo(this%rank)
       hi = this%row_hi(this%rank)
       if (this%halo_pending) call halo_merge(this)
-      rows(1) = lo
-      rows(2) = lo
-      call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
-      rows(1) = hi
-      rows(2) = hi
-      call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
-      call halo_start(this)
-      rows(1) = lo + 1
-      rows(2) = hi - 1
-      if (rows(2) >= rows(1)) call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
+      if (this%e_lo >= this%e_hi - 1) then
+         ! the parts sent meet: all swept, then sent
+         rows(1) = lo
+         rows(2) = hi
+         call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
+         call halo_start(this)
+      else
+         rows(1) = lo
+         rows(2) = this%e_lo
+         if (rows(2) >= rows(1)) call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
+         rows(1) = this%e_hi
+         rows(2) = hi
+         if (rows(2) >= rows(1)) call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
+         call halo_start(this)
+         rows(1) = this%e_lo + 1
+         rows(2) = this%e_hi - 1
+         call this%sweep%step(stiff, this%u, this%v, this%fint, ca, cb, dt, this%unew, full, rows)
+      end if
       call split_gather(this, this%sweep%partial, this%v, this%unew, this%fint)
    end subroutine split_sweep
 
@@ -463,36 +540,35 @@ contains
       end do
    end subroutine split_gather
 
-   !> Send this rank's first and last rows of u~ (just swept) to the ranks below and above and
-   !> receive theirs (non-blocking; halo_merge waits). Sent from copies: the step changes u~ at
-   !> the listed dofs before the messages are done.
+   !> Send this rank's nodes of u~ (just swept) that the ranks below and above read, and receive
+   !> theirs (non-blocking; halo_merge waits). Sent from copies: the step changes u~ at the
+   !> listed dofs before the messages are done.
    subroutine halo_start(this)
       type(explicit_t), intent(inout) :: this
-      integer :: nrow, lo, hi, below, above
-      nrow = 2*(this%sweep%nx + 1)
-      lo = this%row_lo(this%rank)
-      hi = this%row_hi(this%rank)
+      integer :: below, above, k
       below = merge(this%rank - 1, -1, this%rank > 0)
       above = merge(this%rank + 1, -1, this%rank < this%nproc - 1)
-      call flat_copy(nrow, this%unew, lo*nrow, this%h_send(:, 1))
-      call flat_copy(nrow, this%unew, hi*nrow, this%h_send(:, 2))
-      call comm_halo_start(this%h_send, this%h_recv, nrow, below, above)
+      do k = 1, 2
+         if (this%s_hi(k) >= this%s_lo(k)) &
+            call flat_copy(2*(this%s_hi(k) - this%s_lo(k) + 1), this%unew, 2*(this%s_lo(k) - 1), this%h_send(:, k))
+      end do
+      call comm_halo_start(this%h_send, this%h_recv, this%h_n, below, above)
       this%halo_pending = .true.
    end subroutine halo_start
 
-   !> The neighbours' rows of u~ received (halo_start of the last step) put into u beside this
-   !> rank's rows, but at the listed dofs: those every rank has already changed alike (loads,
+   !> The neighbours' nodes of u~ received (halo_start of the last step) put into u beside this
+   !> rank's nodes, but at the listed dofs: those every rank has already changed alike (loads,
    !> prescribed values, contact), so that u there is u^(n+1) of every rank.
    subroutine halo_merge(this)
       type(explicit_t), intent(inout) :: this
-      integer :: nrow, lo, hi
+      integer :: k
       call comm_halo_wait(this%h_recv)
       this%halo_pending = .false.
-      nrow = 2*(this%sweep%nx + 1)
-      lo = this%row_lo(this%rank)
-      hi = this%row_hi(this%rank)
-      if (this%rank > 0) call merge_row(nrow, this%h_recv(:, 1), this%s_other, (lo - 1)*nrow, this%u)
-      if (this%rank < this%nproc - 1) call merge_row(nrow, this%h_recv(:, 2), this%s_other, (hi + 1)*nrow, this%u)
+      do k = 1, 2
+         if (this%h_hi(k) >= this%h_lo(k)) &
+            call merge_row(2*(this%h_hi(k) - this%h_lo(k) + 1), this%h_recv(:, k), this%s_other, &
+                           2*(this%h_lo(k) - 1), this%u)
+      end do
    end subroutine halo_merge
 
    !> b(1:n) = a(o + 1 : o + n) (flattened a).

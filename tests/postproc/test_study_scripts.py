@@ -338,6 +338,43 @@ class BenchStaticThreads(Base):
         self.assertEqual(os.listdir(self.path("b")), [])            # its runs removed once read
 
 
+class BenchScaling(Base):
+    """bench_scaling.py: strong and weak scaling over MPI ranks x OpenMP threads (docs/mpi.md)."""
+
+    def test_bad_counts_refused(self):
+        for opt, val in (("--ranks", "x"), ("--ranks", "0"), ("--threads", "1,"), ("--threads", "-2")):
+            with self.subTest(opt=opt, val=val):
+                p = self.script("bench_scaling.py", "--exe", "/bin/false", opt + "=" + val, "--out", self.path("o"))
+                self.one_line(p, r"^bench_scaling\.py: refused: %s '%s'" % (opt, re.escape(val)))
+        self.assertFalse(os.path.exists(self.path("o")))
+
+    @unittest.skipUnless(EXE and shutil.which("mpirun"), "needs CONTACT2D and mpirun")
+    def test_tiny_tables(self):
+        # level 1 (26 x 6 elements), 20 steps, 1 and 2 ranks of 1 thread: both tables, a row per
+        # case with a positive time and rate; the 1 x 1 row is the reference (speed-up 1); the weak
+        # mesh of 2 ranks has twice the grid rows, so twice the elements of 1 rank's
+        out = self.path("s")
+        p = self.script("bench_scaling.py", "--exe", EXE, "--ranks", "1,2", "--threads", "1", "--level", "1",
+                        "--steps", "20", "--repeats", "1", "--out", out)
+        self.assertEqual(p.returncode, 0, p.stderr[-2000:])
+        for kind in ("strong", "weak"):
+            self.assertIn(kind + " scaling", p.stdout)
+        rows = [line.split() for line in p.stdout.splitlines() if re.match(r"^\s+[12]\s+1\s+[0-9.]", line)]
+        self.assertEqual([r[0] for r in rows], ["1", "2", "1", "2"], p.stdout)
+        for r in rows:
+            self.assertGreater(float(r[2]), 0)      # steps [s]
+            self.assertGreater(float(r[3]), 0)      # element-steps / s
+        self.assertEqual(rows[0][4], "1.00")
+        import h5py
+        with h5py.File(os.path.join(out, "weak_1_1.h5"), "r") as f1, h5py.File(os.path.join(out, "weak_2_1.h5"), "r") as f2:
+            self.assertEqual(2 * int(f1.attrs["element_count"]), int(f2.attrs["element_count"]))
+        # its table is not replaced without --force: one line, the file kept
+        before = digest(os.path.join(out, "scaling.json"))
+        p = self.script("bench_scaling.py", "--exe", EXE, "--level", "1", "--steps", "20", "--repeats", "1", "--out", out)
+        self.one_line(p, r"^bench_scaling\.py: refused: .*scaling\.json exists")
+        self.assertEqual(before, digest(os.path.join(out, "scaling.json")))
+
+
 class Products(Base):
     """Every study script refuses, before any run, a table or figure of its own already there (the
     benchmarks: bench.json, and bench_static.py the runs it would write and remove)."""

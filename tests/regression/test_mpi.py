@@ -7,8 +7,10 @@ serial order, and the rest of the step is done alike on every rank from the same
 the file rank 0 writes must equal the serial run's bit for bit (docs/mpi.md). Checked on the
 paper scene, P1 and P0, with 1, 2, 3 and 4 ranks (and 2 ranks of 2 OpenMP threads): a fixed
 number of steps at the deck's level and the converged end state at level 2 (every dataset and
-attribute but the timings). Contracts: a Gmsh deck, the static engine and a mesh with fewer
-than two grid rows per rank stop under mpirun with one line, exit 1, no file; a write that fails
+attribute but the timings); Gmsh meshes (chunks of block rows per rank) likewise, the Hertz
+indenter (frictionless) and the Mindlin cylinder (Coulomb) with 1 to 4 ranks. Contracts: a Gmsh
+mesh of fewer chunks than ranks, the static engine and a mesh with fewer than two grid rows per
+rank stop under mpirun with one line, exit 1, no file; a write that fails
 on rank 0 alone (a full tmpfs, where one can be mounted) ends the run with one line and exit 2,
 no hang; SIGTERM sent to rank 1 alone stops every rank at the same step (exit 143, one line,
 the file holds status 'interrupted'), it does not hang.
@@ -109,9 +111,17 @@ def body(t):
                        runs=((1, 1), (2, 1), (3, 1), (4, 1), (2, 2)))
         same_as_serial(t, deck, ["--set", "mesh:level=2"], m + "_end_state_level2")
 
+    # Gmsh meshes: contiguous ranges of whole chunks of block rows per rank, so the chunk sums
+    # are the serial ones added in the serial order; frictionless (Hertz) and Coulomb (Mindlin)
+    same_as_serial(t, t.deck("hertz_indenter_p1.nml"), ["--set", "mesh:level=1", "--set", "solver:max_steps=400"],
+                   "gmsh_hertz_400_steps", runs=((1, 1), (2, 1), (3, 1), (4, 1), (2, 2)))
+    same_as_serial(t, t.deck("mindlin_cylinder_p1.nml"), ["--set", "solver:max_steps=400"], "gmsh_mindlin_400_steps")
+
     # what the ranks cannot share: one line naming the reason, exit 1, nothing written
     p1 = t.deck("baillet_sassi_2002_p1.nml")
-    for name, n, deck, args, word in (("gmsh_refused", 2, t.deck("gmsh_rectangle_p1.nml"), [], "mpirun"),
+    # (the level-0 Gmsh rectangle: 14 x 4 = 56 nodes, one chunk of block rows)
+    for name, n, deck, args, word in (("gmsh_too_small", 2, t.deck("gmsh_rectangle_p1.nml"), ["--set", "mesh:level=0"],
+                                       "56 nodes"),
                                       ("static_refused", 2, p1, ["--static"], "one process"),
                                       ("rows_refused", 3, p1, ["--set", "mesh:level=0"], "4 grid rows")):
         r = mpirun(t, n, deck, args, name)
