@@ -1,8 +1,8 @@
 // Two equal bars on a line (inputs/bar_impact_two_bodies_p1.nml): 'a' [0, L] x [0, w] and
-// 'b' [L + g0, 2 L + g0] x [0, w], L = 1, w = 0.125, g0 = 1e-4 mm; structured, n = 32
+// 'b' [L + g0, 2 L + g0] x [0, w], L = 1, w = 0.125, g0 = 1e-4 mm; structured, n = 64
 // elements along each bar and one across (every node lies on a top or bottom edge, where
 // u_y = 0: a 1D strip).
-L = 1.0; w = 0.125; g0 = 1.0e-4; n = 32;
+L = 1.0; w = 0.125; g0 = 1.0e-4; n = 64;
 Point(1) = {0, 0, 0};
 Point(2) = {L, 0, 0};
 Point(3) = {L, w, 0};
