@@ -456,6 +456,16 @@ contains
                call model%contact%law%limits(unit_fn, unit_fn, lim)
                carries = pack(lim, inpart(model%contact%node)) > 0
             end if
+            ! two bodies: the contact holds the master body too, along its nodal normals
+            if (model%contact%body) then
+               associate (mb => model%contact%master)
+                  cnode = [cnode, pack(mb%mnode, inpart(mb%mnode))]
+                  cn = reshape([cn, pack(mb%nodal, spread(inpart(mb%mnode), 1, 2))], [2, size(cnode)])
+                  ctan = reshape([ctan, pack(reshape([-mb%nodal(2, :), mb%nodal(1, :)], [2, mb%nm], order=[2, 1]), &
+                                             spread(inpart(mb%mnode), 1, 2))], [2, size(cnode)])
+                  carries = [carries, spread(.false., 1, count(inpart(mb%mnode)))]
+               end associate
+            end if
          else
             allocate (cnode(0), cn(2, 0), ctan(2, 0), carries(0))
          end if
