@@ -432,7 +432,8 @@ contains
    !> B M^-1 B^T into the LCP's band storage (lcp_t's ab and arow, its factor dropped):
    !> A_ij = sum over the nodes p of row i and q of row j that are the same mesh node of
    !> w_ip w_jq n_i^T diag(M^-1) n_j (w = 1 at the slave node, -(1 - xi), -xi at the master
-   !> nodes). stat 1 when two coupled slave nodes lie farther apart in the chain than the band.
+   !> nodes); a node off the master is a row of its own (diagonal 1, b = 0: never active).
+   !> stat 1 when two coupled slave nodes lie farther apart in the chain than the band.
    subroutine assemble(this, stat, errmsg)
       type(master_body_t), intent(inout) :: this
       integer, intent(out) :: stat
@@ -446,7 +447,7 @@ contains
       this%mlast = 0
       do i = 1, this%nc
          si = this%seg(i)
-         if (si == 0) cycle
+         if (si == 0 .or. .not. this%on(i)) cycle
          this%mfirst(si:si + 1) = min(this%mfirst(si:si + 1), i)
          this%mlast(si:si + 1) = max(this%mlast(si:si + 1), i)
       end do
@@ -461,6 +462,8 @@ contains
       end do
       do i = 1, this%nc
          si = this%seg(i)
+         ! a node off the master (no segment near, or beyond an end): a row of its own
+         if (.not. this%on(i)) si = 0
          ! diagonal
          if (si == 0) then
             aij = 1
@@ -479,7 +482,7 @@ contains
          wi = [1 - this%xi(i), this%xi(i)]
          do j = i + 1, min(i + kd, this%nc)
             sj = this%seg(j)
-            if (sj == 0) cycle
+            if (sj == 0 .or. .not. this%on(j)) cycle
             if (abs(sj - si) > 1) cycle
             wj = [1 - this%xi(j), this%xi(j)]
             aij = 0
