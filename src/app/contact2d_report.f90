@@ -168,6 +168,17 @@ contains
          end if
          write (output_unit, '(a)') ' penetration         '//sci(c%penetration(state%u))//' mm (max'// &
             trim(merge(' per dual cell)', ' per node)     ', c%multiplier_name() == 'P0'))
+         ! two bodies: the search's interval and clock, the LCP's largest violation
+         if (c%body) then
+            associate (mb => c%master)
+               write (output_unit, '(a)') ' contact search      '//str(int(mb%searches))//' bucket search(es) in '// &
+                  str(int(mb%steps))//' steps (one every '//fixed(real(mb%steps, wp)/max(real(mb%searches, wp), 1.0_wp), 1)// &
+                  ' steps: at 1/4 of the shortest master edge of relative motion); '// &
+                  fixed(real(mb%search_ticks, wp)/max(real(c%clock_ticks, wp), 1.0_wp)*100, 1)//' % of the contact time'
+               write (output_unit, '(a)') ' contact LCP         '//str(int(mb%lcp_iterations))// &
+                  ' active-set iterations; largest violation max(-w)/max|b| '//sci(mb%residual_max)
+            end associate
+         end if
       end associate
    end subroutine contact_summary
 

@@ -104,7 +104,7 @@ contains
       ! the guard watches only a step taken from the power estimate (contact2d_timestep)
       solver%guard = model%dt_guarded
       solver%guard_after = loading_end(model)
-      if (any(deck%initial%velocity /= 0)) call initial_velocity_apply(solver, model%load%free, deck%initial%velocity)
+      if (any(model%velocity0 /= 0)) call initial_velocity_apply(solver, model%load%free, model%velocity0)
       call state%init(model%contact, model%dt)
       call state_from_explicit(state, solver)
    end subroutine engine_start

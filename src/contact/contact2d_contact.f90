@@ -21,6 +21,7 @@ module contact2d_contact
    use contact2d_friction, only: friction_law_t
    use contact2d_friction_input, only: friction_input_t
    use contact2d_obstacle, only: obstacle_t
+   use contact2d_master_body, only: master_body_t
    implicit none
    private
    public :: contact_t, contact_config_t, status_separated, status_stick, status_slip
@@ -50,6 +51,13 @@ module contact2d_contact
       !> gaps and normals in the current configuration, refreshed each step (docs/geometry.md);
       !> else in the initial one, fixed (a moving obstacle needs .true.: the deck's check)
       logical :: current = .false.
+      !> the master side as another body's boundary (instead of the obstacle; docs/geometry.md
+      !> "Two bodies"): its chain of mesh nodes in order, and a point inside that body next to
+      !> the chain's first edge (it orients the master's normals)
+      integer, allocatable :: master_nodes(:)
+      real(wp) :: master_inside(2) = 0
+      !> the most a slave node may start inside the master body [mm] (round-off of the meshes)
+      real(wp) :: overlap_tol = 0
    end type contact_config_t
 
    !> A candidate contact boundary and the multipliers of the last step.
@@ -118,6 +126,10 @@ module contact2d_contact
       real(wp) :: c_last = -1               !< the c that rec(rec_cmass, :) belongs to
       integer :: stat = 0                   !< /= 0 after a failed LCP solve
       character(len=:), allocatable :: errmsg
+      !> the master side is another body's boundary (node to segment, contact2d_master_body):
+      !> the step is master%step; the per-node arrays above describe the slave nodes
+      logical :: body = .false.
+      type(master_body_t) :: master
    contains
       procedure :: init => contact_init
       procedure :: enforce => contact_enforce
@@ -148,12 +160,20 @@ contains
       stat = 1
       this%active = .true.
       this%errmsg = ''
-      ! gap and normal of every candidate from its closest obstacle point, in the initial
-      ! configuration, fixed for the run (small deformation: docs/geometry.md, SPEC section 3)
       allocate (cand_gap(size(candidates)), cand_nu(2, size(candidates)))
-      do i = 1, size(candidates)
-         call cfg%obstacle%project(x(:, candidates(i)), cand_gap(i), cand_nu(:, i))
-      end do
+      if (allocated(cfg%master_nodes)) then
+         ! another body's boundary: gaps and master normals from the closest master segments
+         ! (contact2d_master_body), refreshed every step
+         call body_init(this, cfg, candidates, x, free, mass, cand_gap, cand_nu, stat, errmsg)
+         if (stat /= 0) return
+         stat = 1
+      else
+         ! gap and normal of every candidate from its closest obstacle point, in the initial
+         ! configuration, fixed for the run (small deformation: docs/geometry.md, SPEC section 3)
+         do i = 1, size(candidates)
+            call cfg%obstacle%project(x(:, candidates(i)), cand_gap(i), cand_nu(:, i))
+         end do
+      end if
       if (size(candidates) == 0) then
          errmsg = 'contact: the candidate boundary (edge and range) holds no node'
          return
@@ -180,6 +200,12 @@ contains
 
       call init_friction(this, cfg, stat, errmsg)
       if (stat /= 0) return
+      if (this%body) then
+         ! the master's set-up on the kept slave nodes (the gaps of the output's first frame)
+         call this%master%init(this%node, cfg%master_nodes, x, free, mass, cfg%master_inside, &
+                               cand_gap(1:this%nc), cand_nu(:, 1:this%nc), stat, errmsg)
+         if (stat /= 0) return
+      end if
 
       this%penalty = cfg%method == 'penalty'
       this%penalty_stiffness = cfg%penalty_stiffness
@@ -192,6 +218,49 @@ contains
       stat = 0
       errmsg = ''
    end subroutine contact_init
+
+   !> Another body's boundary as the master side: the candidates' initial gaps and the master's
+   !> normals at their projections (off the master: a large gap, the normal of the nearest
+   !> segment); refused when a slave node starts inside the master body by more than
+   !> cfg%overlap_tol (the worst named, with its penetration) or a node is on both sides.
+   subroutine body_init(this, cfg, candidates, x, free, mass, cand_gap, cand_nu, stat, errmsg)
+      type(contact_t), intent(inout) :: this
+      type(contact_config_t), intent(in) :: cfg
+      integer, intent(in) :: candidates(:)
+      real(wp), intent(in) :: x(:, :), free(:, :), mass(:)
+      real(wp), intent(out) :: cand_gap(:), cand_nu(:, :)
+      integer, intent(out) :: stat
+      character(len=:), allocatable, intent(out) :: errmsg
+      integer :: i, w
+      stat = 1
+      this%body = .true.
+      do i = 1, size(candidates)
+         if (any(cfg%master_nodes == candidates(i))) then
+            errmsg = 'contact: node '//str(user_id(cfg, candidates(i)))//' is on both the slave boundary and '// &
+                     'the master boundary; the two sides must be different bodies, not bonded there'
+            return
+         end if
+      end do
+      if (size(candidates) == 0) then
+         stat = 0
+         return
+      end if
+      call this%master%init(candidates, cfg%master_nodes, x, free, mass, cfg%master_inside, cand_gap, cand_nu, &
+                            stat, errmsg)
+      if (stat /= 0) return
+      w = minloc(cand_gap, dim=1)
+      if (cand_gap(w) < -cfg%overlap_tol) then
+         stat = 1
+         errmsg = 'contact: the bodies overlap at the start: slave node '//str(user_id(cfg, candidates(w)))// &
+                  ' at ('//str(x(1, candidates(w)))//', '//str(x(2, candidates(w)))//') is '// &
+                  str(-cand_gap(w))//' mm inside the master boundary (tolerance '//str(cfg%overlap_tol)//' mm)'
+         return
+      end if
+      ! round-off below the tolerance counts as touching; off the master: far
+      cand_gap = max(cand_gap, 0.0_wp)
+      where (cand_gap > 1.0e30_wp) cand_gap = 1.0e30_wp
+      stat = 0
+   end subroutine body_init
 
    !> The contact nodes: the candidates less those whose normal displacement is prescribed
    !> (warned: their reaction is a Dirichlet one), with their normals n_i = -nu_i and tangents
@@ -431,7 +500,18 @@ contains
       real(wp) :: rc, tn
       logical :: cells
 
+ 
       call system_clock(t0)
+      if (this%body) then
+         ! another body's boundary: node to segment in the current configuration
+         call this%master%step(u, v, unew, c, dt, fc, this%fn, this%normal, this%tangent, this%gap, &
+                               this%normal_work, this%penetration_max, this%stat, this%errmsg)
+         call body_status(this)
+         this%c_last = c
+         call system_clock(t1)
+         this%clock_ticks = this%clock_ticks + (t1 - t0)
+         return
+      end if
       rc = 1/c
       cells = this%multiplier == multiplier_p0 .and. .not. this%penalty
       ! geometry 'current': gaps, normals and the obstacle's surface motion of this step, from
@@ -694,6 +774,22 @@ contains
       end do
    end subroutine update_geometry
 
+   !> Two bodies: the sums and the status of the step from the normal forces (frictionless:
+   !> a touching node slides), the status changes counted.
+   subroutine body_status(this)
+      type(contact_t), intent(inout) :: this
+      integer :: i, st
+      this%normal_total = sum(this%fn)
+      this%tangential_total = 0
+      do i = 1, this%nc
+         st = merge(status_slip, status_separated, this%fn(i) > 0)
+         if (st /= this%last_status(i)) this%status_changes = this%status_changes + 1
+         this%last_status(i) = st
+         this%rec(rec_nx:rec_ny, i) = this%normal(:, i)
+         this%rec(rec_tx:rec_ty, i) = this%tangent(:, i)
+      end do
+   end subroutine body_status
+
    !> Status per contact node (SPEC section 3): 0 separated, 1 stick, 2 slip.
    subroutine contact_status(this, status)
       class(contact_t), intent(in) :: this
@@ -784,6 +880,12 @@ contains
       real(wp), intent(in) :: u(:, :)
       real(wp) :: d(this%nc), dd(this%nc)
       integer :: i
+      if (this%body) then
+         ! two bodies: the gap of the last step after its correction (c max(-w, 0))
+         pen = 0
+         if (allocated(this%master%lcp%w)) pen = max(0.0_wp, -this%c_last*minval(this%master%lcp%w))
+         return
+      end if
       do i = 1, this%nc
          d(i) = dot_product(u(:, this%node(i)), this%normal(:, i)) - this%gap(i)
       end do

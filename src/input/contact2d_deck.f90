@@ -594,6 +594,13 @@ contains
                      'not the penalty one'
             return
          end if
+         ! contact between two bodies (contact:master): the explicit engine only, so far
+         if (len_trim(deck%contact%master) > 0 .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
+            errmsg = 'solver:'//trim(merge("method = 'static'", 'compare_static   ', deck%solver%method == 'static'))// &
+                     " refuses contact:master = '"//trim(deck%contact%master)//"': contact between two bodies "// &
+                     'has the explicit engine only (docs/geometry.md "Two bodies")'
+            return
+         end if
          ! a moving obstacle, or the current configuration: the static engine solves one
          ! equilibrium in the initial configuration, and the quasi-static answer of a dragged
          ! frictional contact depends on the path (docs/geometry.md "Moving obstacles")
@@ -650,8 +657,21 @@ contains
    logical function initial_state_refused(deck, errmsg) result(bad)
       type(deck_t), intent(inout) :: deck
       character(len=:), allocatable, intent(inout) :: errmsg
+      logical :: moving
+      integer :: b
+      character(len=:), allocatable :: what
       bad = .true.
-      deck%dynamic = any(deck%initial%velocity /= 0) .and. deck%solver%damping == 'none'
+      ! an initial velocity: initial:velocity, or a body's own (&body velocity)
+      moving = any(deck%initial%velocity /= 0)
+      what = "initial:velocity = "//str(deck%initial%velocity(1))//", "//str(deck%initial%velocity(2))
+      do b = 1, size(deck%body)
+         if (all(deck%body(b)%velocity /= unset)) then
+            if (any(deck%body(b)%velocity /= 0) .and. .not. moving) &
+               what = "body#"//str(b)//":velocity = "//str(deck%body(b)%velocity(1))//", "//str(deck%body(b)%velocity(2))
+            moving = moving .or. any(deck%body(b)%velocity /= 0)
+         end if
+      end do
+      deck%dynamic = moving .and. deck%solver%damping == 'none'
       select case (trim(deck%solver%convergence_test))
       case ('on'); deck%convergence_test = .true.
       case ('off'); deck%convergence_test = .false.
@@ -662,17 +682,16 @@ contains
          return
       end if
       ! the static engine solves for equilibrium: an initial velocity has no meaning there
-      if (any(deck%initial%velocity /= 0) .and. &
-          (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
-         errmsg = "initial:velocity = "//str(deck%initial%velocity(1))//", "//str(deck%initial%velocity(2))// &
+      if (moving .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
+         errmsg = what// &
                   " has no meaning for the static engine (solver:method = 'static' or compare_static)"
          return
       end if
       ! mass scaling changes the dynamics: refused with an initial velocity (the damping check
       ! of &solver refuses damping = 'none' and 'given')
-      if (any(deck%initial%velocity /= 0) .and. deck%solver%mass_scaling > 0) then
-         errmsg = "solver:mass_scaling = "//str(deck%solver%mass_scaling)//" is refused with initial:velocity = "// &
-                  str(deck%initial%velocity(1))//", "//str(deck%initial%velocity(2))//" (fictitious mass changes the dynamics)"
+      if (moving .and. deck%solver%mass_scaling > 0) then
+         errmsg = "solver:mass_scaling = "//str(deck%solver%mass_scaling)//" is refused with "//what// &
+                  " (fictitious mass changes the dynamics)"
          return
       end if
       bad = .false.

@@ -8,14 +8,14 @@ module contact2d_deck_body
    use contact2d_strings, only: str
    use contact2d_checks, only: check_finite, check_range, max_magnitude
    use contact2d_material, only: material_t, material_init
-   use contact2d_deck_syntax, only: unset, line_len, override_t, read_failed, too_long, kv, quoted
+   use contact2d_deck_syntax, only: unset, line_len, override_t, read_failed, too_long, kv, quoted, reals
    use contact2d_deck_material, only: material_cfg_t
    implicit none
    private
    public :: body_cfg_t, body_variables, body_cfg_read, body_cfg_not_finite, body_cfg_validate, body_cfg_echo
 
    !> The variables of &body, as the namelist in body_cfg_read declares them.
-   character(len=*), parameter :: body_variables = 'name surface young poisson density'
+   character(len=*), parameter :: body_variables = 'name surface young poisson density velocity'
 
    !> &body: a named body made of the elements of one Gmsh physical surface.
    type :: body_cfg_t
@@ -24,6 +24,8 @@ module contact2d_deck_body
       real(wp) :: young = unset           !< E [MPa], > 0; default material:young
       real(wp) :: poisson = unset         !< nu [-], -1 < nu < 0.5; default material:poisson
       real(wp) :: density = unset         !< rho [t/mm^3], > 0; default material:density
+      !> the body's initial velocity (vx, vy) [mm/s]; default initial:velocity (docs/deck.md)
+      real(wp) :: velocity(2) = [unset, unset]
       integer :: line = 0                 !< deck line of the group (for messages)
    end type body_cfg_t
 
@@ -38,12 +40,12 @@ contains
       integer, intent(inout) :: stat
       character(len=:), allocatable, intent(inout) :: errmsg
       character(len=line_len) :: name, surface   ! long enough to see over-long values
-      real(wp) :: young, poisson, density
+      real(wp) :: young, poisson, density, velocity(2)
       integer :: ios, i
       character(len=256) :: msg
-      namelist /body/ name, surface, young, poisson, density
+      namelist /body/ name, surface, young, poisson, density, velocity
       name = cfg%name; surface = cfg%surface
-      young = cfg%young; poisson = cfg%poisson; density = cfg%density
+      young = cfg%young; poisson = cfg%poisson; density = cfg%density; velocity = cfg%velocity
       read (blk, nml=body, iostat=ios, iomsg=msg)
       if (read_failed(ios, msg, body_variables, where, stat, errmsg)) return
       do i = 1, size(ovr)
@@ -53,7 +55,7 @@ contains
       if (too_long(where, 'name', name, len(cfg%name), stat, errmsg)) return
       if (too_long(where, 'surface', surface, len(cfg%surface), stat, errmsg)) return
       cfg%name = name; cfg%surface = surface
-      cfg%young = young; cfg%poisson = poisson; cfg%density = density
+      cfg%young = young; cfg%poisson = poisson; cfg%density = density; cfg%velocity = velocity
    end subroutine body_cfg_read
 
    !> check_finite on every real of the group, named 'label:variable'; true if one is bad.
@@ -65,6 +67,7 @@ contains
       if (check_finite(label//':young', cfg%young, errmsg)) return
       if (check_finite(label//':poisson', cfg%poisson, errmsg)) return
       if (check_finite(label//':density', cfg%density, errmsg)) return
+      if (check_finite(label//':velocity', cfg%velocity, errmsg)) return
       bad = .false.
    end function body_cfg_not_finite
 
@@ -114,6 +117,10 @@ contains
       end if
       if (check_range('body#'//str(k)//':young', cfg%young, 1.0e-30_wp, max_magnitude, errmsg)) return
       if (check_range('body#'//str(k)//':density', cfg%density, 1.0e-30_wp, max_magnitude, errmsg)) return
+      if (count(cfg%velocity == unset) == 1) then
+         errmsg = g//" '"//trim(cfg%name)//"': velocity has one component; give both, velocity = vx, vy (mm/s)"
+         return
+      end if
       bad = .false.
    contains
       function missing(var, unit) result(msg)
@@ -130,6 +137,8 @@ contains
       character(len=:), allocatable :: text
       character(len=1), parameter :: nl = new_line('a')
       text = '&body'//nl//kv('name', quoted(cfg%name))//kv('surface', quoted(cfg%surface))// &
-             kv('young', str(cfg%young))//kv('poisson', str(cfg%poisson))//kv('density', str(cfg%density))//'/'//nl
+             kv('young', str(cfg%young))//kv('poisson', str(cfg%poisson))//kv('density', str(cfg%density))
+      if (all(cfg%velocity /= unset)) text = text//kv('velocity', reals(cfg%velocity))
+      text = text//'/'//nl
    end function body_cfg_echo
 end module contact2d_deck_body

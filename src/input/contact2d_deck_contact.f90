@@ -28,7 +28,7 @@ module contact2d_deck_contact
    !> The variables of &contact (the group's own, the obstacles' and the friction laws'), for
    !> the did-you-mean of a misspelled name.
    character(len=*), parameter :: contact_variables = &
-      'edge boundary xmin xmax ymin ymax obstacle '//obstacle_variables//' '//motion_names//' '// &
+      'edge boundary xmin xmax ymin ymax obstacle master '//obstacle_variables//' '//motion_names//' '// &
       'origin direction multiplier friction '//friction_variables//' method penalty_stiffness'
 
    !> &contact: a candidate boundary against a rigid obstacle (SPEC section 3).
@@ -36,7 +36,11 @@ module contact2d_deck_contact
       logical :: present = .false.                 !< derived: the deck has a &contact group
       character(len=16) :: edge = ''               !< candidate side (built-in mesh)
       character(len=64) :: boundary = ''           !< candidate Gmsh physical curve (instead of edge)
-      character(len=8) :: obstacle = 'plane'       !< a name of obstacle_registry
+      !> a name of obstacle_registry; '' until validated, then 'plane' unless master is given
+      character(len=8) :: obstacle = ''
+      !> the master side as another body's boundary: a Gmsh physical curve (instead of an
+      !> obstacle; node-to-segment contact between bodies, docs/geometry.md "Two bodies")
+      character(len=64) :: master = ''
       real(wp) :: xmin = -unset, xmax = unset      !< x range of the candidate boundary [mm]
       real(wp) :: ymin = -unset, ymax = unset      !< y range of the candidate boundary [mm]
       real(wp) :: origin(2) = [unset, unset]       !< point O of the abscissa; default: first node
@@ -126,14 +130,14 @@ contains
       character(len=:), allocatable, intent(inout) :: errmsg
       type(assignment_t), allocatable :: parts(:)
       character(len=line_len), allocatable :: names(:)
-      character(len=line_len) :: edge, friction, direction, multiplier, method, boundary, obstacle
+      character(len=line_len) :: edge, friction, direction, multiplier, method, boundary, obstacle, master
       character(len=:), allocatable :: name
       integer :: i, k, paren
       call ensure_laws(cfg)
       ! the group's own strings at full length while reading, so that an over-long value is
       ! refused (too_long), never cut
       edge = cfg%edge; friction = cfg%friction; direction = cfg%direction; multiplier = cfg%multiplier
-      method = cfg%method; boundary = cfg%boundary; obstacle = cfg%obstacle
+      method = cfg%method; boundary = cfg%boundary; obstacle = cfg%obstacle; master = cfg%master
       parts = split_assignments(blk, 'contact')
       do i = 1, size(parts)
          call read_one(parts(i)%name, parts(i)%records, where)
@@ -160,12 +164,13 @@ contains
       if (too_long(where, 'method', method, len(cfg%method), stat, errmsg)) return
       if (too_long(where, 'boundary', boundary, len(cfg%boundary), stat, errmsg)) return
       if (too_long(where, 'obstacle', obstacle, len(cfg%obstacle), stat, errmsg)) return
+      if (too_long(where, 'master', master, len(cfg%master), stat, errmsg)) return
       do k = 1, size(cfg%shapes)
          if (cfg%shapes(k)%input%too_long(where, stat, errmsg)) return
       end do
       if (cfg%motion%too_long(where, stat, errmsg)) return
       cfg%edge = edge; cfg%friction = friction; cfg%direction = direction; cfg%multiplier = multiplier
-      cfg%method = method; cfg%boundary = boundary; cfg%obstacle = obstacle
+      cfg%method = method; cfg%boundary = boundary; cfg%obstacle = obstacle; cfg%master = master
    contains
       !> One assignment (namelist records) read by the module that claims the variable name.
       subroutine read_one(name, records, prefix)
@@ -195,7 +200,7 @@ contains
          real(wp) :: xmin, xmax, ymin, ymax, origin(2), penalty_stiffness
          integer :: ios
          character(len=256) :: msg
-         namelist /contact/ edge, boundary, xmin, xmax, ymin, ymax, obstacle, origin, direction, multiplier, &
+         namelist /contact/ edge, boundary, xmin, xmax, ymin, ymax, obstacle, master, origin, direction, multiplier, &
             friction, method, penalty_stiffness
          xmin = cfg%xmin; xmax = cfg%xmax; ymin = cfg%ymin; ymax = cfg%ymax; origin = cfg%origin
          penalty_stiffness = cfg%penalty_stiffness
@@ -243,8 +248,13 @@ contains
       errmsg = place_problem('contact', ':', c%edge, c%boundary, mesh_file)
       if (len(errmsg) > 0) return
       c%edge = lower(c%edge)
-      if (obstacle_refused(c, errmsg)) return
-      if (c%motion%validate(trim(c%obstacle), errmsg)) return
+      if (len_trim(c%master) > 0) then
+         if (master_refused(c, errmsg)) return
+      else
+         if (len_trim(c%obstacle) == 0) c%obstacle = 'plane'
+         if (obstacle_refused(c, errmsg)) return
+         if (c%motion%validate(trim(c%obstacle), errmsg)) return
+      end if
       c%direction = lower(c%direction)
       if (.not. any(c%direction == [character(len=4) :: 'ccw', 'cw'])) then
          errmsg = "contact:direction = '"//trim(c%direction)//"' is not one of 'ccw', 'cw'"
@@ -270,8 +280,75 @@ contains
          errmsg = "contact:penalty_stiffness is set but method = 'lagrange' ignores it"
          return
       end if
+      ! two bodies: the node-to-segment operator has P1 multipliers, no friction yet, and the
+      ! forward-increment Lagrange method only (docs/geometry.md "Two bodies")
+      if (len_trim(c%master) > 0) then
+         if (c%multiplier /= 'P1') then
+            errmsg = "contact:multiplier = '"//trim(c%multiplier)//"' with master = '"//trim(c%master)// &
+                     "': contact between two bodies has P1 multipliers only (node to segment)"
+            return
+         end if
+         if (c%friction /= 'frictionless') then
+            errmsg = "contact:friction = '"//trim(c%friction)//"' with master = '"//trim(c%master)// &
+                     "': contact between two bodies is frictionless only (so far)"
+            return
+         end if
+         if (c%method /= 'lagrange') then
+            errmsg = "contact:method = '"//trim(c%method)//"' with master = '"//trim(c%master)// &
+                     "': contact between two bodies has the Lagrange multipliers only"
+            return
+         end if
+      end if
       bad = .false.
    end function contact_cfg_validate
+
+   !> The master side as another body's boundary (contact:master): the slave side is a physical
+   !> curve (boundary), not the master itself, and no obstacle, obstacle variable or obstacle
+   !> motion is given; the geometry is the current one (finite sliding). True if refused.
+   logical function master_refused(c, errmsg) result(bad)
+      type(contact_cfg_t), intent(inout) :: c
+      character(len=:), allocatable, intent(inout) :: errmsg
+      character(len=:), allocatable :: why
+      integer :: k
+      bad = .true.
+      call ensure_laws(c)
+      if (len_trim(c%obstacle) > 0) then
+         errmsg = "contact: obstacle = '"//trim(c%obstacle)//"' and master = '"//trim(c%master)// &
+                  "' are both given; the master side is a rigid obstacle or another body's boundary, not both"
+         return
+      end if
+      why = ''
+      do k = 1, size(c%shapes)
+         if (c%shapes(k)%input%unused('', why)) then
+            errmsg = "contact: master = '"//trim(c%master)//"' is given but so are an obstacle's variables ("// &
+                     obstacle_variables//"); the master side is a rigid obstacle or another body's boundary, not both"
+            return
+         end if
+      end do
+      if (len_trim(c%boundary) == 0) then
+         errmsg = "contact: master = '"//trim(c%master)//"' needs the slave side as boundary = '<physical "// &
+                  "curve>' of another body (edge = '"//trim(c%edge)//"' is on the built-in mesh, one body)"
+         return
+      end if
+      if (trim(c%master) == trim(c%boundary)) then
+         errmsg = "contact: master = '"//trim(c%master)//"' is the slave boundary itself; a boundary cannot "// &
+                  'be paired with itself'
+         return
+      end if
+      if (lower(c%motion%geometry) == 'initial') then
+         errmsg = "contact: master = '"//trim(c%master)//"' takes no geometry = 'initial': two bodies are in "// &
+                  'contact in the current configuration (finite sliding)'
+         return
+      end if
+      if (c%motion%validate('', errmsg)) return
+      if (c%motion%moving()) then
+         errmsg = "contact: master = '"//trim(c%master)//"' takes no obstacle motion (obstacle_motion_times, "// &
+                  "obstacle_velocity_x, ...): the master side is another body"
+         return
+      end if
+      c%motion%geometry = 'current'
+      bad = .false.
+   end function master_refused
 
    !> The obstacle (its shape and that shape's variables, the other shapes' left unset), the
    !> origin of the abscissa and the candidate range; fills the plane's defaults. True if refused.
@@ -377,11 +454,15 @@ contains
       character(len=:), allocatable :: text
       character(len=1), parameter :: nl = new_line('a')
       integer :: k
-      text = '&contact'//nl//place_text(c%edge, c%boundary)//range_text(c%xmin, c%xmax, c%ymin, c%ymax)// &
-             kv('obstacle', quoted(c%obstacle))
-      k = chosen_shape(c)
-      if (k > 0) text = text//c%shapes(k)%input%echo()
-      text = text//c%motion%echo()
+      text = '&contact'//nl//place_text(c%edge, c%boundary)//range_text(c%xmin, c%xmax, c%ymin, c%ymax)
+      if (len_trim(c%master) > 0) then
+         text = text//kv('master', quoted(c%master))
+      else
+         text = text//kv('obstacle', quoted(c%obstacle))
+         k = chosen_shape(c)
+         if (k > 0) text = text//c%shapes(k)%input%echo()
+         text = text//c%motion%echo()
+      end if
       if (all(c%origin /= unset)) text = text//kv('origin', reals(c%origin))
       text = text//kv('direction', quoted(c%direction))//kv('multiplier', quoted(c%multiplier))// &
              kv('friction', quoted(c%friction))

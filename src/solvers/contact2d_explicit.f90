@@ -612,8 +612,8 @@ contains
       if (sig /= 0) call sys_signal_raise(sig)
    end subroutine split_end
 
-   !> The dofs whose u~ is changed after the sweep: loaded, prescribed and contact-node dofs,
-   !> each once, in dof order.
+   !> The dofs whose u~ is changed after the sweep: loaded, prescribed and contact-node dofs
+   !> (with two bodies the master boundary's nodes as well), each once, in dof order.
    subroutine special_dofs(this, load, contact)
       type(explicit_t), intent(inout) :: this
       type(loading_t), intent(in) :: load
@@ -634,6 +634,12 @@ contains
          do i = 1, contact%nc
             mark(:, contact%node(i)) = .true.
          end do
+         ! two bodies: the contact forces act on every node of the master boundary too
+         if (contact%body) then
+            do i = 1, contact%master%nm
+               mark(:, contact%master%mnode(i)) = .true.
+            end do
+         end if
          this%s_ncontact = contact%nc
       end if
       n = count(mark)

@@ -14,16 +14,33 @@ module contact2d_initial
    private
    public :: initial_velocity_apply, initial_velocity_warning
 
+   !> the initial velocity, uniform (velocity(2)) or per node (velocity(2, nnode): &body velocity)
+   interface initial_velocity_apply
+      module procedure initial_velocity_uniform, initial_velocity_field
+   end interface initial_velocity_apply
+
 contains
 
    !> v^(-1/2) = velocity on the free dofs, 0 on the prescribed ones; the initial kinetic energy.
-   subroutine initial_velocity_apply(solver, free, velocity)
+   subroutine initial_velocity_uniform(solver, free, velocity)
       type(explicit_t), intent(inout) :: solver   !< initialised integrator, before the first step
       real(wp), intent(in) :: free(:, :)          !< (2, nnode): 1 on free dofs, 0 on prescribed ones
       real(wp), intent(in) :: velocity(2)         !< (vx, vy) [mm/s]
+      real(wp), allocatable :: field(:, :)
+      allocate (field(2, size(free, 2)))
+      field(1, :) = velocity(1)
+      field(2, :) = velocity(2)
+      call initial_velocity_field(solver, free, field)
+   end subroutine initial_velocity_uniform
+
+   !> The same with a velocity per node.
+   subroutine initial_velocity_field(solver, free, velocity)
+      type(explicit_t), intent(inout) :: solver   !< initialised integrator, before the first step
+      real(wp), intent(in) :: free(:, :)          !< (2, nnode): 1 on free dofs, 0 on prescribed ones
+      real(wp), intent(in) :: velocity(:, :)      !< (2, nnode): (vx, vy) of each node [mm/s]
       integer :: j
       do j = 1, 2
-         solver%v(j, :) = velocity(j)*free(j, :)
+         solver%v(j, :) = velocity(j, :)*free(j, :)
       end do
       solver%vsum_stale = .true.   ! sum m v^2 formed again by the next advance
       solver%kinetic = 0.5_wp*sum(solver%mass*(solver%v(1, :)**2 + solver%v(2, :)**2))
@@ -31,7 +48,7 @@ contains
       solver%kinetic_step = solver%kinetic   ! v^0 = v^(-1/2) (above)
       ! the blow-up guard compares the kinetic energy with the energy put in
       solver%work_in = solver%work_in + solver%kinetic
-   end subroutine initial_velocity_apply
+   end subroutine initial_velocity_field
 
    !> A warning when the initial velocity has a component on prescribed dofs (they keep their
    !> load curve, which starts at rest); '' otherwise.

@@ -17,7 +17,7 @@ module contact2d_model
    use contact2d_explicit, only: damping_none, damping_given, damping_auto
    use contact2d_initial, only: initial_velocity_warning
    use contact2d_body, only: body_t, body_init
-   use contact2d_pair, only: contact_pair_t, pair_init
+   use contact2d_pair, only: contact_pair_t, pair_init, master_body
    use contact2d_rigid, only: rigid_t, rigid_free_motions, rigid_describe, rigid_drive
    use contact2d_timestep, only: timestep_critical, timestep_choose, timestep_power, timestep_guarded
    implicit none
@@ -39,6 +39,9 @@ module contact2d_model
       !> the contact operator as built and validated; each run's state works on a copy of it
       type(contact_t) :: contact
       real(wp) :: dt = 0             !< initial time step (contact2d_timestep) [s]
+      !> initial velocity of each node (2, nnode) [mm/s]: initial:velocity, or its body's
+      !> &body velocity (a node shared by bodies: the last body's)
+      real(wp), allocatable :: velocity0(:, :)
       real(wp) :: dt_critical = 0    !< critical step: element bound, mass scaling, penalty [s]
       real(wp) :: omega2_power = 0   !< power-iteration estimate of omega_max^2 (0: none) [1/s^2]
       logical :: dt_guarded = .false.   !< dt from the power estimate: watch for a growing mode
@@ -62,7 +65,7 @@ contains
       type(model_t), intent(out) :: model
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      integer :: i, nx, ny, nflip
+      integer :: i, nx, ny, nflip, e, k
       type(material_t) :: material
       type(material_t), allocatable :: mats(:)
       !> outward normals of the sides bottom, right, top, left
@@ -168,6 +171,19 @@ contains
       case ('given'); model%damping = damping_given
       case default; model%damping = damping_auto
       end select
+      ! the initial velocity of each node: uniform, or its body's own (&body velocity)
+      allocate (model%velocity0(2, model%mesh%nnode))
+      model%velocity0(1, :) = deck%initial%velocity(1)
+      model%velocity0(2, :) = deck%initial%velocity(2)
+      do i = 1, size(deck%body)
+         if (any(deck%body(i)%velocity == unset)) cycle
+         do e = 1, model%mesh%nel
+            if (model%body_of(e) /= i) cycle
+            do k = 1, 4
+               model%velocity0(:, model%mesh%conn(k, e)) = deck%body(i)%velocity
+            end do
+         end do
+      end do
       ! the last warning: an initial velocity on prescribed dofs (contact2d_initial)
       errmsg = initial_velocity_warning(model%load%free, deck%initial%velocity)
       if (len(errmsg) > 0) call model%warnings%add(errmsg)
@@ -234,7 +250,7 @@ contains
          integer, allocatable :: nodes(:)
          type(contact_config_t) :: cfg
          character(len=:), allocatable :: obstacle, warning
-         integer :: g, slave
+         integer :: g, slave, master
          real(wp) :: d1, d2
          associate (c => deck%contact)
             if (len_trim(c%boundary) > 0) then
@@ -264,23 +280,30 @@ contains
             end if
             ! the slave body: every edge of Gamma_c in one body (contact between bodies and
             ! several &contact groups come later; docs/deck.md &body)
-            call chain_body(nodes, slave)
+            call chain_body(nodes, slave, "boundary = '"//trim(c%boundary)//"'")
             if (stat /= 0) return
-            call c%shape%make(cfg%obstacle)
-            ! the obstacle's prescribed motion and where the step takes its geometry from
-            call c%motion%apply(cfg%obstacle)
-            cfg%current = c%motion%current()
+            if (len_trim(c%master) > 0) then
+               ! another body's boundary as the master side (docs/geometry.md "Two bodies")
+               call build_master(slave, cfg, master)
+               if (stat /= 0) return
+               obstacle = "boundary '"//trim(c%master)//"' of body '"//model%bodies(master)%name//"'"
+            else
+               call c%shape%make(cfg%obstacle)
+               ! the obstacle's prescribed motion and where the step takes its geometry from
+               call c%motion%apply(cfg%obstacle)
+               cfg%current = c%motion%current()
+               obstacle = cfg%obstacle%describe()
+            end if
             cfg%origin = c%origin
             cfg%multiplier = c%multiplier
             if (allocated(c%law)) allocate (cfg%friction, source=c%law)
             cfg%method = c%method
             cfg%penalty_stiffness = c%penalty_stiffness
             cfg%file_id = model%mesh%file_id([(g, g=1, model%mesh%nnode)])
-            obstacle = cfg%obstacle%describe()
             call model%contact%init(cfg, nodes, model%mesh%x, model%load%free, model%stiff%mass, &
                                     model%warnings, stat, errmsg)
             ! an obstacle that the built-in edge can never touch (the shape's own test): warn
-            if (stat == 0 .and. len_trim(c%boundary) == 0) then
+            if (stat == 0 .and. len_trim(c%boundary) == 0 .and. len_trim(c%master) == 0) then
                warning = c%shape%edge_warning(trim(c%edge), outward(:, edge_id(c%edge)))
                if (len(warning) > 0) call model%warnings%add(warning)
             end if
@@ -294,8 +317,57 @@ contains
             deallocate (model%pairs)
             allocate (model%pairs(1))
             call pair_init(model%pairs(1), slave, model%contact%node, obstacle)
+            if (model%contact%body) then
+               model%pairs(1)%master_kind = master_body
+               model%pairs(1)%master_body = master
+            end if
          end if
       end subroutine build_contact
+
+      !> The master chain (contact:master, a physical curve, all of it, counter-clockwise: its
+      !> body on the left), its body (refused: not a curve of the mesh, on several bodies, on
+      !> the slave's body), a point inside that body by its first edge, the overlap tolerance.
+      subroutine build_master(slave, cfg, master)
+         integer, intent(in) :: slave
+         type(contact_config_t), intent(inout) :: cfg
+         integer, intent(out) :: master
+         integer :: gm
+         real(wp) :: t(2), hmin
+         integer :: k
+         associate (c => deck%contact)
+            gm = model%mesh%group_index(c%master)
+            if (gm == 0) then
+               stat = 1
+               errmsg = deck%path//": contact:master = '"//trim(c%master)//"' is not a physical curve of "// &
+                        trim(deck%mesh%file)//'; it has '//model%mesh%group_list()
+               return
+            end if
+            call model%mesh%group_chain(gm, [-unset, unset, -unset, unset], .false., cfg%master_nodes, stat, errmsg)
+            if (stat /= 0) then
+               errmsg = deck%path//": contact:master = '"//trim(c%master)//"' "//errmsg
+               return
+            end if
+            call chain_body(cfg%master_nodes, master, "master = '"//trim(c%master)//"'")
+            if (stat /= 0) return
+            if (master == slave) then
+               stat = 1
+               errmsg = deck%path//": contact:master = '"//trim(c%master)//"' and boundary = '"// &
+                        trim(c%boundary)//"' are both on body '"//model%bodies(master)%name// &
+                        "'; contact pairs the boundaries of two different bodies"
+               return
+            end if
+            associate (xm => model%mesh%x(:, cfg%master_nodes))
+               t = xm(:, 2) - xm(:, 1)
+               cfg%master_inside = 0.5_wp*(xm(:, 1) + xm(:, 2)) + 0.1_wp*[-t(2), t(1)]
+               hmin = huge(1.0_wp)
+               do k = 1, size(cfg%master_nodes) - 1
+                  hmin = min(hmin, norm2(xm(:, k + 1) - xm(:, k)))
+               end do
+            end associate
+            ! the overlap the meshes' round-off may leave: 1e-6 of the shortest master edge
+            cfg%overlap_tol = 1.0e-6_wp*hmin
+         end associate
+      end subroutine build_master
 
       !> The rigid motions of each connected part of the mesh (a body, or bodies bonded where they
       !> share nodes; docs/static.md "Bodies held by contact"): those its supports leave free are
@@ -384,6 +456,16 @@ contains
                call model%contact%law%limits(unit_fn, unit_fn, lim)
                carries = pack(lim, inpart(model%contact%node)) > 0
             end if
+            ! two bodies: the contact holds the master body too, along its nodal normals
+            if (model%contact%body) then
+               associate (mb => model%contact%master)
+                  cnode = [cnode, pack(mb%mnode, inpart(mb%mnode))]
+                  cn = reshape([cn, pack(mb%nodal, spread(inpart(mb%mnode), 1, 2))], [2, size(cnode)])
+                  ctan = reshape([ctan, pack(reshape([-mb%nodal(2, :), mb%nodal(1, :)], [2, mb%nm], order=[2, 1]), &
+                                             spread(inpart(mb%mnode), 1, 2))], [2, size(cnode)])
+                  carries = [carries, spread(.false., 1, count(inpart(mb%mnode)))]
+               end associate
+            end if
          else
             allocate (cnode(0), cn(2, 0), ctan(2, 0), carries(0))
          end if
@@ -422,9 +504,10 @@ contains
 
       !> The body of the chain `nodes` (consecutive nodes are the ends of one element edge): the
       !> body of the elements holding its edges; stat = 1 when they are of several bodies.
-      subroutine chain_body(nodes, slave)
+      subroutine chain_body(nodes, slave, what)
          integer, intent(in) :: nodes(:)
          integer, intent(out) :: slave
+         character(len=*), intent(in) :: what   !< the deck's variable and value, for the message
          integer, allocatable :: adj_start(:), adj_elem(:)
          integer :: i, k, e, b
          slave = 1
@@ -440,7 +523,7 @@ contains
                if (slave == 0) slave = b
                if (b /= slave) then
                   stat = 1
-                  errmsg = deck%path//": contact:boundary = '"//trim(deck%contact%boundary)//"' lies on bodies '"// &
+                  errmsg = deck%path//": contact:"//what//" lies on bodies '"// &
                            model%bodies(slave)%name//"' and '"//model%bodies(b)%name// &
                            "'; a contact boundary lies on one body"
                   return
