@@ -180,6 +180,13 @@ contains
          quit = context//head//': Gmsh ended the program while '//what//' (exit() called by Gmsh: an Exit '// &
                 'statement in the .geo, or a fatal Gmsh error); contact2d needs the mesh: remove the Exit '// &
                 '(a .geo is a program Gmsh runs, docs/geometry.md)'
+         if (index(what, 'refining') == 1) then
+            ! refining a mesh already read runs no .geo statement: an exit() there is Gmsh's own
+            ! fatal error, seen when the refined mesh does not fit in memory
+            quit = context//head//': Gmsh ended the program while '//what//' (exit() called by Gmsh: a '// &
+                   'fatal Gmsh error, such as running out of memory: the refined mesh may not fit in the '// &
+                   'memory this process may use; try a lower mesh:level)'
+         end if
          if (what == stage_collect) then
             ! Fortran's own run-time errors (a failed allocation) end the program too, their
             ! message discarded with Gmsh's stderr
