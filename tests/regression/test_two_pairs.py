@@ -23,6 +23,7 @@ import os
 import numpy as np
 
 import c2dtest
+import contact2d
 
 E, NU, L, H, DELTA = 7.0e4, 0.3, 1.0, 0.5, 2.0e-3
 P = E * DELTA / (H * (1 - NU * NU))
@@ -93,6 +94,38 @@ def body(t):
                 "present" if 'Name="contact_final_%s"' % n in xmf else "missing")
         t.check(run, "sidecar polyline of pair %s" % n, ":/contact/%s/coordinates" % n in xmf, "present",
                 "present" if ":/contact/%s/coordinates" % n in xmf else "missing")
+
+    # -- the postproc reader: per-pair data, the first by default ----------------------------------
+    with contact2d.open_run(run.h5) as r:
+        t.check_equal(run, "open_run: pair_names", list(NAMES), r.pair_names)
+        t.check(run, "open_run: contact('normal_force') is the first pair's",
+                np.array_equal(r.contact("normal_force"), fn["floor"]), "floor's", "same" if
+                np.array_equal(r.contact("normal_force"), fn["floor"]) else "different")
+        t.check(run, "open_run: contact('normal_force', 'ram') and (.., 2) are the ram's",
+                np.array_equal(r.contact("normal_force", "ram"), fn["ram"]) and
+                np.array_equal(r.contact("normal_force", 2), fn["ram"]), "ram's", "checked")
+        t.check(run, "open_run: history('normal_force_total', pair='ram') is ram_normal_force_total",
+                np.array_equal(r.history("normal_force_total", pair="ram"), hist["ram_normal_force_total"]),
+                "ram's series", "checked")
+        t.check_le(run, "open_run: |contact_gap('floor')| at the end [mm]", np.abs(r.contact_gap("floor")), 1e-12 * DELTA,
+                   reason="every node closed on the fixed plane (round-off)")
+        t.check_close(run, "open_run: contact_gap('ram') at the end = delta [mm]", DELTA, r.contact_gap("ram"),
+                      rtol=1e-9, reason="the gap to the ram's initial place (/contact/ram/gap): every node followed "
+                      "the ram down by delta")
+        try:
+            r.contact("pressure", "wall")
+            unknown = "no error"
+        except KeyError as exc:
+            unknown = str(exc)
+        t.check(run, "open_run: an unknown pair is a KeyError naming the pairs", "floor, ram" in unknown,
+                "KeyError ... floor, ram", unknown)
+    one = t.run(t.deck("patch_compression_%s.nml" % mult.lower()), name="one_pair")
+    t.expect_exit(one, 0)
+    with contact2d.open_run(one.h5) as r:
+        t.check_equal(one, "one pair: pair_names", ["contact"], r.pair_names)
+        t.check(one, "one pair: contact('pressure', 'contact') = contact('pressure') = /final/contact/pressure",
+                np.array_equal(r.contact("pressure", "contact"), r.read("final/contact/pressure")) and
+                np.array_equal(r.contact("pressure"), r.read("final/contact/pressure")), "equal", "checked")
 
     # -- refusals ------------------------------------------------------------------------------
     refused(t, deck, "same_name", ["--set", "contact#2:name='floor'"], ["contact#2:name", "floor"])
