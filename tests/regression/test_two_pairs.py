@@ -15,6 +15,10 @@ Facts:
 - The ram's displacement is the closed-form integral of its velocity curve: -delta at the end.
 - Output with two pairs: /contact/<name>, /final/contact/<name>, '<name>_<series>' histories whose
   sums are the totals, one contact grid per pair in the sidecar, one summary line per pair.
+- block_corner (the same block pressed by tractions q_x = 50, q_y = 100 MPa into the corner of two
+  fixed frictionless planes, pairs 'floor' and 'wall', the corner node held in x): uniform biaxial
+  compression, every element's stress (-q_x, -q_y, 0); the floor carries q_y L, the wall with the
+  corner's reaction q_x H.
 - Refusals (exit 1, one line naming the value, no file): two pairs with one name; a node in the
   slave sets of two pairs (named with both pairs); --static with two pairs.
 """
@@ -26,6 +30,7 @@ import c2dtest
 import contact2d
 
 E, NU, L, H, DELTA = 7.0e4, 0.3, 1.0, 0.5, 2.0e-3
+QX, QY = 50.0, 100.0   # block_corner's tractions [MPa]
 P = E * DELTA / (H * (1 - NU * NU))
 NAMES = ("floor", "ram")
 
@@ -126,6 +131,22 @@ def body(t):
         t.check(one, "one pair: contact('pressure', 'contact') = contact('pressure') = /final/contact/pressure",
                 np.array_equal(r.contact("pressure", "contact"), r.read("final/contact/pressure")) and
                 np.array_equal(r.contact("pressure"), r.read("final/contact/pressure")), "equal", "checked")
+
+    # -- block_corner: two fixed obstacles, biaxial compression -----------------------------------
+    corner = t.run(t.deck("block_corner_%s.nml" % mult.lower()), name="corner")
+    t.expect_exit(corner, 0)
+    with corner.open() as f:
+        t.check_equal(corner, "converged", 1, int(f.attrs["converged"]))
+        cs = f["final/stress"][()]
+        floor = f["final/contact/floor/normal_force"][()].sum()
+        wall = f["final/contact/wall/normal_force"][()].sum()
+        rx = f["final/reaction"][()][:, 0].sum()
+    t.check_close(corner, "sigma = (-q_x, -q_y, 0) in every element [MPa]", np.array([-QX, -QY, 0.0]) + 0 * cs, cs,
+                  atol=1e-8 * QY, reason="uniform biaxial compression, exact for Q1 (measured 4e-12 q_y)")
+    t.check_close(corner, "floor: total normal force = q_y L [N/mm]", QY * L, floor, rtol=1e-8,
+                  reason="every bottom node on the floor (measured 5e-13)")
+    t.check_close(corner, "wall's total normal force + the corner's x reaction = q_x H [N/mm]", QX * H, wall + rx,
+                  rtol=1e-8, reason="the corner node, held in x, is dropped from the wall pair (measured 9e-12)")
 
     # -- refusals ------------------------------------------------------------------------------
     refused(t, deck, "same_name", ["--set", "contact#2:name='floor'"], ["contact#2:name", "floor"])
