@@ -238,6 +238,14 @@ contains
          end if
          write (output_unit, '(a)') ' energy balance      '//sci(state%balance_error())// &
             ' (relative error; W_ext = '//sci(state%external_work)//' mJ)'
+         ! several pairs: each pair's terms of the balance (it takes their sums, contact2d_state)
+         if (size(state%contacts) > 1) then
+            do k = 1, size(state%contacts)
+               write (output_unit, '(a)') '                     pair '//model%pairs(k)%name//': D_friction = '// &
+                  sci(state%contacts(k)%friction_dissipation)//' mJ, W_normal = '// &
+                  sci(state%contacts(k)%normal_work)//' mJ, W_obstacle = '//sci(state%contacts(k)%obstacle_work)//' mJ'
+            end do
+         end if
          ! one set of contact lines per pair
          do k = 1, size(state%contacts)
             if (state%contacts(k)%active) call contact_summary(state, state%contacts(k), pair_label(model, k))

@@ -557,7 +557,7 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       real(wp) :: last_stage
       logical :: t_end_default
-      integer :: i
+      integer :: i, j
 
       stat = 1
       errmsg = ''
@@ -613,12 +613,13 @@ contains
             return
          end if
          if (len_trim(deck%contacts(i)%name) == 0) deck%contacts(i)%name = contact_default_name(i)
-         if (any(deck%contacts(1:i - 1)%name == deck%contacts(i)%name)) then
-            errmsg = "contact#"//str(i)//":name = '"//trim(deck%contacts(i)%name)//"' is the name of "// &
-                     'contact#'//str(findloc(deck%contacts(1:i - 1)%name, deck%contacts(i)%name, 1))// &
-                     ' too; each pair needs its own name'
-            return
-         end if
+         do j = 1, i - 1
+            if (deck%contacts(j)%name == deck%contacts(i)%name) then
+               errmsg = "contact#"//str(i)//":name = '"//trim(deck%contacts(i)%name)//"' is the name of "// &
+                        'contact#'//str(j)//' too; each pair needs its own name'
+               return
+            end if
+         end do
       end do
       ! the static engine condenses onto the unknowns of one contact chain (docs/static.md)
       if (size(deck%contacts) > 1 .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then

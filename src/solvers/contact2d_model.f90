@@ -253,7 +253,7 @@ contains
          integer, allocatable :: nodes(:)
          type(contact_config_t) :: cfg
          character(len=:), allocatable :: obstacle, warning
-         integer :: g, slave
+         integer :: g, slave, nwarn, k
          real(wp) :: d1, d2
          associate (c => deck%contacts(ip))
             if (len_trim(c%boundary) > 0) then
@@ -296,8 +296,16 @@ contains
             cfg%penalty_stiffness = c%penalty_stiffness
             cfg%file_id = model%mesh%file_id([(g, g=1, model%mesh%nnode)])
             obstacle = cfg%obstacle%describe()
+            nwarn = model%warnings%n
             call model%contacts(ip)%init(cfg, nodes, model%mesh%x, model%load%free, model%stiff%mass, &
                                     model%warnings, stat, errmsg)
+            ! the k-th group's warnings say contact#k (the first's, contact, as before)
+            if (ip > 1) then
+               do k = nwarn + 1, model%warnings%n
+                  if (index(model%warnings%items(k), 'contact:') == 1) &
+                     model%warnings%items(k) = 'contact#'//str(ip)//trim(model%warnings%items(k)(8:))
+               end do
+            end if
             ! an obstacle that the built-in edge can never touch (the shape's own test): warn
             if (stat == 0 .and. len_trim(c%boundary) == 0) then
                warning = c%shape%edge_warning(trim(c%edge), outward(:, edge_id(c%edge)))

@@ -89,6 +89,19 @@ def body(t):
                   rtol=1e-12, reason="the exact integral of the two ramps")
     t.check_le(run, "energy_balance_error at every sample", hist["energy_balance_error"], 1e-12,
                reason="the moving plane's work is the balance's input (measured 1.3e-15)")
+    # -- the summary's energy lines: each pair's terms of the balance -------------------------------
+    with run.open() as f:
+        wob = {n: float(f["history/%s_obstacle_work" % n][-1]) for n in NAMES}
+    for n in NAMES:
+        lines = [l for l in run.stdout.splitlines() if l.strip().startswith("pair %s: D_friction" % n)]
+        t.check_equal(run, "energy line of pair %s" % n, 1, len(lines))
+        if lines:
+            printed = float(lines[0].split("W_obstacle =")[1].split()[0])
+            t.check_close(run, "pair %s: printed W_obstacle = its last obstacle_work sample [mJ]" % n, wob[n], printed,
+                          rtol=1e-3, atol=1e-300, reason="the printed value has 4 digits")
+    t.check_equal(run, "the fixed floor does no work", 0.0, wob["floor"])
+    t.check(run, "the ram does work on the block", wob["ram"] > 0, "> 0", wob["ram"])
+
     # -- summary and sidecar: one per pair --------------------------------------------------------
     for n in NAMES:
         lines = [l for l in run.stdout.splitlines() if l.startswith(" contact %s " % n)]
@@ -135,6 +148,9 @@ def body(t):
     # -- block_corner: two fixed obstacles, biaxial compression -----------------------------------
     corner = t.run(t.deck("block_corner_%s.nml" % mult.lower()), name="corner")
     t.expect_exit(corner, 0)
+    dropped = [l for l in corner.stderr_lines() if "candidate node(s) dropped" in l]
+    t.check(corner, "the wall's warning about its dropped corner node names contact#2",
+            len(dropped) == 1 and "contact#2: " in dropped[0], "one line with contact#2:", dropped)
     with corner.open() as f:
         t.check_equal(corner, "converged", 1, int(f.attrs["converged"]))
         cs = f["final/stress"][()]
