@@ -51,9 +51,11 @@ def parse_effective_deck(text):
     """The 'effective_deck' attribute (one 'key = value' per line) as a dict of groups.
 
     Groups that may repeat (dirichlet, traction, body) map to lists of dicts, the others to dicts.
+    &contact may repeat too (one group per contact pair): 'contact' is the first group's dict (as
+    for a deck with one pair), 'contacts' the list of all of them.
     List-valued variables ('values', 'times', ...) always come back as lists.
     """
-    deck = {"dirichlet": [], "traction": [], "body": []}
+    deck = {"dirichlet": [], "traction": [], "body": [], "contacts": []}
     current = None
     for line in text.splitlines():
         m = _GROUP.match(line)
@@ -62,6 +64,9 @@ def parse_effective_deck(text):
             name = m.group(1).lower()
             if name in ("dirichlet", "traction", "body"):
                 deck[name].append(current)
+            elif name == "contact":
+                deck["contacts"].append(current)
+                deck.setdefault("contact", current)
             else:
                 deck[name] = current
             continue
@@ -207,8 +212,12 @@ class Run:
         """Names of the /history series, sorted."""
         return sorted(self.file["history"].keys()) if "history" in self.file else []
 
-    def history(self, name):
-        """/history/<name>: one value per sample [units(f'history/{name}')]."""
+    def history(self, name, pair=None):
+        """/history/<name>: one value per sample [units(f'history/{name}')]. With several contact
+        pairs and `pair` (a name or 1-based index) given, that pair's series '<pair name>_<name>'
+        (docs/output.md "Several contact pairs"); a file with one pair: its series."""
+        if pair is not None and self._pair_group(pair):
+            return self.file["history/%s_%s" % (self.pair_names[self._pair_index(pair)], name)][()]
         return self.file["history/" + name][()]
 
     def histories(self):
@@ -226,34 +235,74 @@ class Run:
         return self.file["final/displacement"][()]
 
     # -- contact: /contact (set-up) and /final/contact (end state) ----------------------------
+    # Each contact reader takes `pair`: a pair's name or 1-based index, None for the first (the
+    # only one of a file with one pair, whose data sit directly in /contact and /final/contact;
+    # with several they sit in /contact/<name> and /final/contact/<name>, docs/output.md).
     @property
     def has_contact(self):
         return "contact" in self.file
 
-    def contact(self, name):
-        """/final/contact/<name> (normal_force, tangential_force, pressure, shear, status)."""
-        return self.file["final/contact/" + name][()]
+    @property
+    def pair_names(self):
+        """The contact pairs' names in the deck's order ([] without contact; one pair: its
+        contact:name, 'contact' unless the deck names it)."""
+        if "contact" not in self.file:
+            return []
+        a = self.file["contact"].attrs
+        if "pair_count" in a:
+            return [_plain(a["pair_name_%d" % k]) for k in range(1, int(a["pair_count"]) + 1)]
+        return [str(self.deck.get("contact", {}).get("name", "contact"))]
 
-    def contact_setup(self, name):
-        """/contact/<name>: nodes (1-based), abscissa, weight, gap, normal, threshold."""
-        return self.file["contact/" + name][()]
+    def _pair_index(self, pair):
+        """0-based index of `pair` (None: the first; a name; a 1-based index); KeyError naming it."""
+        names = self.pair_names
+        if not names:
+            raise KeyError("%s: no contact pair (no /contact)" % self.path)
+        if pair is None:
+            return 0
+        if isinstance(pair, (int, np.integer)) and not isinstance(pair, bool):
+            if 1 <= pair <= len(names):
+                return int(pair) - 1
+        elif pair in names:
+            return names.index(pair)
+        raise KeyError("%s: no contact pair %r; its pairs: %s" % (self.path, pair, ", ".join(names)))
+
+    def _pair_group(self, pair):
+        """'' for a file with one pair, '/<name>' of `pair` for a file with several."""
+        k = self._pair_index(pair)
+        if "pair_count" in self.file["contact"].attrs:
+            return "/" + self.pair_names[k]
+        return ""
+
+    def contact(self, name, pair=None):
+        """/final/contact[/<pair>]/<name> (normal_force, tangential_force, pressure, shear, status)."""
+        return self.file["final/contact%s/%s" % (self._pair_group(pair), name)][()]
+
+    def contact_setup(self, name, pair=None):
+        """/contact[/<pair>]/<name>: nodes (1-based), abscissa, weight, gap, normal, threshold."""
+        return self.file["contact%s/%s" % (self._pair_group(pair), name)][()]
+
+    def pair_nodes(self, pair=None):
+        """0-based node indices along the pair's Gamma_c (the file stores 1-based ids)."""
+        return self.contact_setup("nodes", pair) - 1
 
     @property
     def contact_nodes(self):
-        """0-based node indices along Gamma_c (the file stores 1-based ids)."""
-        return self.file["contact/nodes"][()] - 1
+        """0-based node indices along Gamma_c of the first pair (pair_nodes for the others)."""
+        return self.pair_nodes()
 
     @property
     def abscissa(self):
-        """(ncontact,) curvilinear abscissa along Gamma_c [mm]."""
-        return self.file["contact/abscissa"][()]
+        """(ncontact,) curvilinear abscissa along Gamma_c of the first pair [mm]
+        (contact_setup('abscissa', pair) for the others)."""
+        return self.contact_setup("abscissa")
 
-    def contact_gap(self):
+    def contact_gap(self, pair=None):
         """(ncontact,) gap at the end, g_i - u_i.n_i [mm] (SPEC section 3: d_i = u_i.n - g_i is the
         penetration, so the gap is -d_i; > 0 open, 0 closed)."""
-        u = self.displacement[self.contact_nodes]
-        n = self.contact_setup("normal").reshape(-1, 2)
-        return self.contact_setup("gap") - np.einsum("ij,ij->i", u, n)
+        u = self.displacement[self.pair_nodes(pair)]
+        n = self.contact_setup("normal", pair).reshape(-1, 2)
+        return self.contact_setup("gap", pair) - np.einsum("ij,ij->i", u, n)
 
     # -- /fields/<step> snapshots -------------------------------------------------------------
     def snapshots(self):

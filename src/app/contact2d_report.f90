@@ -119,7 +119,7 @@ contains
       character(len=:), allocatable :: bound
       bound = 'element bound 2/omega_max'
       if (model%scaled_nodes > 0) bound = 'bound with mass scaling'
-      if (model%contact%penalty) bound = bound//trim(merge(' and ', ' with', model%scaled_nodes > 0))//' the penalty springs'
+      if (any(model%contacts%penalty)) bound = bound//trim(merge(' and ', ' with', model%scaled_nodes > 0))//' the penalty springs'
       write (output_unit, '(a)') 'dt = '//sci(model%dt)//' s = '//fixed(model%dt/model%dt_critical, 3)// &
          ' dt_critical ('//bound//' = '//sci(model%dt_critical)//' s)'
       if (model%omega2_power > 0) then
@@ -149,15 +149,18 @@ contains
       flush (output_unit)
    end subroutine progress_line
 
-   !> Contact lines of the summary: status counts, extent, pressure sign, penetration.
-   subroutine contact_summary(state)
+   !> Contact lines of the summary of one pair: status counts, extent, pressure sign,
+   !> penetration. label: 'contact', or 'contact <name>' with several pairs.
+   subroutine contact_summary(state, c, label)
       type(state_t), intent(in) :: state
-      integer :: status(state%contact%nc), info, nneg
-      real(wp) :: pressure(state%contact%nc), shear(state%contact%nc)
-      associate (c => state%contact)
+      type(contact_t), intent(in) :: c
+      character(len=*), intent(in) :: label
+      integer :: status(c%nc), info, nneg
+      real(wp) :: pressure(c%nc), shear(c%nc)
+      block
          call c%status(status)
          call c%fields(pressure, shear, info)
-         call summary_contact_status(c, status)
+         call summary_contact_status(c, status, label)
          nneg = count(pressure < 0)
          write (output_unit, '(a)', advance='no') ' contact pressure    max '//sci(maxval(pressure))//' MPa'
          if (nneg > 0) then
@@ -168,7 +171,7 @@ contains
          end if
          write (output_unit, '(a)') ' penetration         '//sci(c%penetration(state%u))//' mm (max'// &
             trim(merge(' per dual cell)', ' per node)     ', c%multiplier_name() == 'P0'))
-         ! two bodies: the search's interval and clock, the LCP's largest violation
+         ! two bodies: the search's interval and clock, the LCP's largest violation (of this pair)
          if (c%body) then
             associate (mb => c%master)
                write (output_unit, '(a)') ' contact search      '//str(int(mb%searches))//' bucket search(es) in '// &
@@ -179,8 +182,17 @@ contains
                   ' active-set iterations; largest violation max(-w)/max|b| '//sci(mb%residual_max)
             end associate
          end if
-      end associate
+      end block
    end subroutine contact_summary
+
+   !> The summary's label of pair k: 'contact' for one pair, 'contact <name>' for several.
+   function pair_label(model, k) result(label)
+      type(model_t), intent(in) :: model
+      integer, intent(in) :: k
+      character(len=:), allocatable :: label
+      label = 'contact'
+      if (size(model%pairs) > 1) label = 'contact '//model%pairs(k)%name
+   end function pair_label
 
    !> The summary of an explicit run (docs/quickstart.md "What a run prints").
    subroutine report_summary(model, deck, state, path, residual, wall, timings, dt_initial, fallback_step, snap_missed)
@@ -194,7 +206,7 @@ contains
       character(len=:), allocatable :: conv, times
       real(wp) :: rate
       integer :: k
-      associate (c => state%contact, converged => state%converged, status => state%status)
+      associate (converged => state%converged, status => state%status)
          if (converged) then
             conv = 'yes (relative residual '//sci(residual)//' < '//sci(deck%solver%tol_residual)//')'
          else if (.not. deck%convergence_test) then
@@ -237,7 +249,18 @@ contains
          end if
          write (output_unit, '(a)') ' energy balance      '//sci(state%balance_error())// &
             ' (relative error; W_ext = '//sci(state%external_work)//' mJ)'
-         if (c%active) call contact_summary(state)
+         ! several pairs: each pair's terms of the balance (it takes their sums, contact2d_state)
+         if (size(state%contacts) > 1) then
+            do k = 1, size(state%contacts)
+               write (output_unit, '(a)') '                     pair '//model%pairs(k)%name//': D_friction = '// &
+                  sci(state%contacts(k)%friction_dissipation)//' mJ, W_normal = '// &
+                  sci(state%contacts(k)%normal_work)//' mJ, W_obstacle = '//sci(state%contacts(k)%obstacle_work)//' mJ'
+            end do
+         end if
+         ! one set of contact lines per pair
+         do k = 1, size(state%contacts)
+            if (state%contacts(k)%active) call contact_summary(state, state%contacts(k), pair_label(model, k))
+         end do
          write (output_unit, '(a)') ' wall time           '//fixed(wall, 3)//' s (set-up '//fixed(timings(1), 3)// &
             ', steps '//fixed(timings(2), 3)//', contact '//fixed(timings(3), 3)//', output '//fixed(timings(4), 3)//')'
          write (output_unit, '(a)') ' element-steps / s   '//sci(rate)
@@ -265,7 +288,8 @@ contains
       real(wp), intent(in) :: kkt_max(4)  !< largest relative KKT residuals
       real(wp), intent(in) :: wall        !< wall time [s]
       character(len=*), intent(in) :: final   !< where the file is
-      integer :: status_c(state%contact%nc), i
+      integer :: i
+      integer, allocatable :: status_c(:)
       character(len=:), allocatable :: asked
       write (output_unit, '(a)') repeat('-', 72)
       write (output_unit, '(a)') ' method              static (CHOLMOD, contact condensed onto Gamma_c, '// &
@@ -287,10 +311,12 @@ contains
       do i = 1, 4
          write (output_unit, '(a)') ' KKT '//kkt_names(i)(1:21)//sci(kkt_max(i))//' (relative)'
       end do
-      if (state%contact%active) then
-         associate (c => state%contact)
+      ! (the static engine solves one pair: contact2d_deck)
+      if (size(state%contacts) > 0) then
+         associate (c => state%contacts(1))
+            allocate (status_c(c%nc))
             call c%status(status_c)
-            call summary_contact_status(c, status_c)
+            call summary_contact_status(c, status_c, 'contact')
          end associate
       end if
       write (output_unit, '(a)') ' static solve        '//fixed(st%time_factor + st%time_condense + st%time_pdas, 3)// &
@@ -303,10 +329,13 @@ contains
 
    !> The summary's contact lines shared by explicit and static runs: status counts, totals and
    !> the extent of the contact zone (docs/quickstart.md "What a run prints").
-   subroutine summary_contact_status(c, status)
+   subroutine summary_contact_status(c, status, label)
       type(contact_t), intent(in) :: c
       integer, intent(in) :: status(:)
-      write (output_unit, '(a)') ' contact             '//c%multiplier_name()//', '//str(c%nc)//' nodes: '// &
+      character(len=*), intent(in) :: label   !< 'contact', or 'contact <name>' (several pairs)
+      character(len=20) :: head
+      head = label
+      write (output_unit, '(a)') ' '//head//c%multiplier_name()//', '//str(c%nc)//' nodes: '// &
          str(count(status == 1))//' stick, '//str(count(status == 2))//' slip, '// &
          str(count(status == 0))//' separated; total F_n = '//sci(c%normal_total)//' N/mm, F_t = '// &
          sci(c%tangential_total)//' N/mm'

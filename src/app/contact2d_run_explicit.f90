@@ -105,7 +105,7 @@ contains
       solver%guard = model%dt_guarded
       solver%guard_after = loading_end(model)
       if (any(model%velocity0 /= 0)) call initial_velocity_apply(solver, model%load%free, model%velocity0)
-      call state%init(model%contact, model%dt)
+      call state%init(model%contacts, model%dt)
       call state_from_explicit(state, solver)
    end subroutine engine_start
 
@@ -172,7 +172,7 @@ contains
                             int(deck%solver%max_steps, i8) - solver%step, march%snap_step - solver%step, &
                             end_step(solver, deck%solver%t_end) - solver%step))
             call system_clock(tick)
-            call solver%advance(model%stiff, model%load, state%contact, nstep)
+            call solver%advance(model%stiff, model%load, state%contacts, nstep)
             call system_clock(clock1)
             t_steps = t_steps + (clock1 - tick)
             call tuner%update(real(clock1 - tick, wp)/rate, nstep)
@@ -184,7 +184,7 @@ contains
             else if (solver%blown_up) then
                state%status = 'blow-up'
                done = .true.
-            else if (state%contact%stat /= 0) then
+            else if (any(state%contacts%stat /= 0)) then
                state%status = 'contact solver failure'
                done = .true.
             else
@@ -225,7 +225,7 @@ contains
       if (interactive) write (output_unit, '(a)', advance='no') achar(13)//repeat(' ', 100)//achar(13)
       ! the step-loop time includes the contact time, reported on its own as well
       march%timings(2) = real(t_steps, wp)/rate
-      march%timings(3) = real(state%contact%clock_ticks, wp)/rate
+      march%timings(3) = real(sum(state%contacts%clock_ticks), wp)/rate
       march%timings(4) = real(t_output, wp)/rate
       call state_from_explicit(state, solver)
    end subroutine integrate
@@ -336,7 +336,8 @@ contains
       type(explicit_t), intent(in) :: solver
       type(state_t), intent(in) :: state
       real(wp), intent(in) :: static_dist
-      integer :: signal
+      integer :: signal, k
+      character(len=:), allocatable :: which
       signal = sys_signal_pending()
       if (state%status == 'interrupted') then
          call stop_interrupted(signal, ' at step '//str(solver%step)//' (t = '//sci(solver%time)//' s); '//dest// &
@@ -355,8 +356,12 @@ contains
                    sci(solver%work_in)//' mJ) with dt = '//fixed(state%dt/model%dt_critical, 3)// &
                    ' dt_critical; '//dest//' holds the history up to the failure'//kept_note(dest))
       end if
-      if (state%contact%stat /= 0) then
-         call fail(2, state%contact%errmsg//' at step '//str(solver%step)//'; '//dest// &
+      k = findloc(state%contacts%stat /= 0, .true., 1)
+      if (k > 0) then
+         ! several pairs: the message names the pair that failed
+         which = ''
+         if (size(state%contacts) > 1) which = "contact pair '"//model%pairs(k)%name//"': "
+         call fail(2, which//state%contacts(k)%errmsg//' at step '//str(solver%step)//'; '//dest// &
                    ' holds the history up to the failure'//kept_note(dest))
       end if
    end subroutine run_end
@@ -387,10 +392,13 @@ contains
    !> the convergence test and the growing-mode guard start there [s].
    real(wp) function loading_end(model) result(t)
       type(model_t), intent(in) :: model
+      integer :: k
       t = model%load%end_time()
-      if (allocated(model%contact%obstacle)) then
-         if (model%contact%obstacle%moving) t = max(t, model%contact%obstacle%velocity(1)%end_time())
-      end if
+      do k = 1, size(model%contacts)
+         if (allocated(model%contacts(k)%obstacle)) then
+            if (model%contacts(k)%obstacle%moving) t = max(t, model%contacts(k)%obstacle%velocity(1)%end_time())
+         end if
+      end do
    end function loading_end
 
    !> The step at which the run reaches t_end: the first step after the current one whose time

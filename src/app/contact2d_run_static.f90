@@ -118,7 +118,7 @@ contains
             str(nint(st%chol%lnz))//' nonzeros, '//sci(st%chol%flops)//' flops, smallest pivot / diagonal '// &
             sci(st%chol%pivot_ratio)//'; '//str(run%increments)//' increment(s) to t = '//sci(model%load%end_time())//' s'
       end associate
-      call run%state%init(model%contact, 0.0_wp)
+      call run%state%init(model%contacts, 0.0_wp)
       call run%state%own_fields(model%mesh%nnode)
    end subroutine static_start
 
@@ -166,7 +166,8 @@ contains
       run%fext_prev = 0
       allocate (run%d(run%engine%nc), run%dprev(run%engine%nc))
       run%dprev = 0
-      if (run%state%contact%active) run%dprev = -run%state%contact%gap
+      ! (the static engine solves one pair: the deck refuses more, contact2d_deck)
+      if (size(run%state%contacts) > 0) run%dprev = -run%state%contacts(1)%gap
       run%status = 'converged'
       run%reason = ''
       call increments(run%engine, deck, model, .true., res, accept)
@@ -217,7 +218,8 @@ contains
          w = 0.5_wp*sum((run%react_prev + run%fext_prev + (st%fint - st%fext)*(1 - model%load%free) + st%fext)* &
                         (st%u - uprev))
          state%external_work = state%external_work + w
-         associate (c => state%contact)
+         if (size(state%contacts) > 0) then
+         associate (c => state%contacts(1))
             if (c%active) then
                c%fn = st%fn
                c%ft = st%ft
@@ -249,6 +251,7 @@ contains
                dprev = d
             end if
          end associate
+         end if
          run%residual = st%kkt(4)
          run%react_prev = (st%fint - st%fext)*(1 - model%load%free)
          run%fext_prev = st%fext

@@ -36,7 +36,8 @@ module contact2d_deck
    use contact2d_deck_loads, only: edge_load_cfg_t, edge_load_variables, edge_load_cfg_read, &
                                    edge_load_cfg_not_finite, edge_load_cfg_validate, edge_load_cfg_echo
    use contact2d_deck_contact, only: contact_cfg_t, contact_variables, contact_cfg_read, contact_cfg_not_finite, &
-                                     contact_cfg_validate, contact_cfg_echo, contact_cfg_publish
+                                     contact_cfg_validate, contact_cfg_echo, contact_cfg_publish, &
+                                     contact_default_name, contact_name_refused
    use contact2d_deck_solver, only: solver_cfg_t, solver_variables, solver_logicals, solver_cfg_read, &
                                     solver_cfg_not_finite, solver_cfg_validate, solver_cfg_echo
    use contact2d_deck_initial, only: initial_cfg_t, initial_variables, initial_cfg_read, initial_cfg_not_finite, &
@@ -75,7 +76,8 @@ module contact2d_deck
       type(body_cfg_t), allocatable :: body(:)
       type(edge_load_cfg_t), allocatable :: dirichlet(:)
       type(edge_load_cfg_t), allocatable :: traction(:)
-      type(contact_cfg_t) :: contact
+      !> the &contact groups, one per contact pair (none: no contact)
+      type(contact_cfg_t), allocatable :: contacts(:)
       type(solver_cfg_t) :: solver
       type(output_cfg_t) :: output
       type(initial_cfg_t) :: initial
@@ -243,7 +245,14 @@ contains
             errmsg = "--set '"//spec//"': the deck has no &body group"
             return
          end if
-         if (group == 'dirichlet' .or. group == 'traction' .or. group == 'body') then
+         if (group == 'contact') then
+            ! a --set without a number changes the first &contact (the one pair of most decks)
+            if (ovr(i)%index > nocc) then
+               errmsg = "--set '"//spec//"': the deck has only "//str(nocc)//' &'//group//' groups'
+               return
+            end if
+            ovr(i)%index = max(ovr(i)%index, 1)
+         else if (group == 'dirichlet' .or. group == 'traction' .or. group == 'body') then
             if (ovr(i)%index == 0 .and. nocc > 1) then
                errmsg = "--set '"//spec//"': the deck has "//str(nocc)//' &'//group// &
                         ' groups; say which, e.g. '//group//'#2:...'
@@ -398,7 +407,7 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       character(len=line_len) :: none(0)
-      integer :: b, nd, nt, nb, k, at
+      integer :: b, nd, nt, nb, nc, k, at
       character(len=:), allocatable :: where, label
 
       stat = 0
@@ -407,6 +416,7 @@ contains
       nd = 0
       nt = 0
       nb = 0
+      nc = 0
       do b = 1, size(blocks)
          label = trim(blocks(b)%name)
          if (label == 'dirichlet') then
@@ -418,6 +428,9 @@ contains
          else if (label == 'body') then
             nb = nb + 1
             label = label//'#'//str(nb)
+         else if (label == 'contact') then
+            nc = nc + 1
+            if (nc > 1) label = label//'#'//str(nc)
          end if
          errmsg = value_problem(lines(blocks(b)%first:blocks(b)%last), trim(blocks(b)%name), label, at)
          if (len(errmsg) > 0) then
@@ -430,6 +443,7 @@ contains
          label = trim(ovr(k)%group)
          if (label == 'dirichlet' .or. label == 'traction' .or. label == 'body') &
             label = label//'#'//str(max(ovr(k)%index, 1))
+         if (label == 'contact' .and. ovr(k)%index > 1) label = label//'#'//str(ovr(k)%index)
          errmsg = value_problem([ovr(k)%assignment], trim(ovr(k)%group), label, at)
          if (len(errmsg) > 0) then
             stat = 1
@@ -440,9 +454,11 @@ contains
       allocate (deck%dirichlet(count(blocks%name == 'dirichlet')))
       allocate (deck%traction(count(blocks%name == 'traction')))
       allocate (deck%body(count(blocks%name == 'body')))
+      allocate (deck%contacts(count(blocks%name == 'contact')))
       nd = 0
       nt = 0
       nb = 0
+      nc = 0
       ! singletons absent from the deck keep their defaults but still take their overrides
       do k = 1, size(group_names)
          if (any(blocks%name == group_names(k))) cycle
@@ -466,8 +482,9 @@ contains
             case ('output'); call output_cfg_read(blk, pick(ovr, 'output', 1), where, deck%output, stat, errmsg)
             case ('initial'); call initial_cfg_read(blk, pick(ovr, 'initial', 1), where, deck%initial, stat, errmsg)
             case ('contact')
-               deck%contact%present = .true.
-               call contact_cfg_read(blk, pick(ovr, 'contact', 1), where, deck%contact, stat, errmsg)
+               nc = nc + 1
+               deck%contacts(nc)%present = .true.
+               call contact_cfg_read(blk, pick(ovr, 'contact', nc), where, deck%contacts(nc), stat, errmsg)
             case ('dirichlet')
                nd = nd + 1
                deck%dirichlet(nd)%line = blocks(b)%first
@@ -540,7 +557,7 @@ contains
       character(len=:), allocatable, intent(out) :: errmsg
       real(wp) :: last_stage
       logical :: t_end_default
-      integer :: i
+      integer :: i, j
 
       stat = 1
       errmsg = ''
@@ -585,40 +602,68 @@ contains
          return
       end if
 
-      if (deck%contact%present) then
-         if (contact_cfg_validate(deck%contact, deck%mesh%file, errmsg)) return
+      do i = 1, size(deck%contacts)
+         if (contact_cfg_validate(deck%contacts(i), deck%mesh%file, errmsg)) then
+            ! the k-th group's messages say contact#k (the first's, contact, as before)
+            if (i > 1 .and. index(errmsg, 'contact:') == 1) errmsg = 'contact#'//str(i)//errmsg(8:)
+            return
+         end if
+         if (contact_name_refused(deck%contacts(i)%name, 'contact', errmsg)) then
+            if (i > 1) errmsg = 'contact#'//str(i)//errmsg(8:)
+            return
+         end if
+         if (len_trim(deck%contacts(i)%name) == 0) deck%contacts(i)%name = contact_default_name(i)
+         do j = 1, i - 1
+            if (deck%contacts(j)%name == deck%contacts(i)%name) then
+               errmsg = "contact#"//str(i)//":name = '"//trim(deck%contacts(i)%name)//"' is the name of "// &
+                        'contact#'//str(j)//' too; each pair needs its own name'
+               return
+            end if
+         end do
+      end do
+      ! the static engine condenses onto the unknowns of one contact chain (docs/static.md)
+      if (size(deck%contacts) > 1 .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
+         errmsg = 'solver:'//trim(merge("method = 'static'", 'compare_static   ', deck%solver%method == 'static'))// &
+                  ' solves one contact pair; the deck has '//str(size(deck%contacts))//' &contact groups'
+         return
+      end if
+      do i = 1, size(deck%contacts)
+       associate (c => deck%contacts(i))
          ! the static engine solves the multiplier problem (13) only (docs/static.md)
-         if (deck%contact%method == 'penalty' .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
+         if (c%method == 'penalty' .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
             errmsg = 'solver:'//trim(merge("method = 'static'", 'compare_static   ', deck%solver%method == 'static'))// &
                      " needs contact:method = 'lagrange': the static engine solves the multiplier problem (13), "// &
                      'not the penalty one'
             return
          end if
          ! contact between two bodies (contact:master): the explicit engine only, so far
-         if (len_trim(deck%contact%master) > 0 .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
+         if (len_trim(c%master) > 0 .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
             errmsg = 'solver:'//trim(merge("method = 'static'", 'compare_static   ', deck%solver%method == 'static'))// &
-                     " refuses contact:master = '"//trim(deck%contact%master)//"': contact between two bodies "// &
+                     " refuses contact:master = '"//trim(c%master)//"': contact between two bodies "// &
                      'has the explicit engine only (docs/geometry.md "Two bodies")'
             return
          end if
          ! a moving obstacle, or the current configuration: the static engine solves one
          ! equilibrium in the initial configuration, and the quasi-static answer of a dragged
          ! frictional contact depends on the path (docs/geometry.md "Moving obstacles")
-         if (deck%contact%motion%current() .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
+         if (c%motion%current() .and. (deck%solver%method == 'static' .or. deck%solver%compare_static)) then
             errmsg = 'solver:'//trim(merge("method = 'static'", 'compare_static   ', deck%solver%method == 'static'))// &
                      ' refuses '//trim(merge("a moving obstacle (contact:obstacle_motion_times)", &
                                              "contact:geometry = 'current'                     ", &
-                                             deck%contact%motion%moving()))// &
+                                             c%motion%moving()))// &
                      ': the static engine solves in the initial configuration, and a dragged frictional '// &
                      'contact has no single quasi-static answer (it depends on the path)'
             return
          end if
          ! the default end time counts the obstacle's motion stages as load stages
-         if (t_end_default .and. deck%contact%motion%moving()) deck%solver%t_end = &
-            10*max(last_stage, deck%contact%motion%obstacle_motion_times(deck%contact%motion%nstage))
-      end if
+         if (t_end_default .and. c%motion%moving()) deck%solver%t_end = &
+            max(deck%solver%t_end, 10*max(last_stage, c%motion%obstacle_motion_times(c%motion%nstage)))
+       end associate
+      end do
       ! the obstacles' and friction laws' values under the names the model reads
-      call contact_cfg_publish(deck%contact)
+      do i = 1, size(deck%contacts)
+         call contact_cfg_publish(deck%contacts(i))
+      end do
       stat = 0
       errmsg = ''
    end subroutine validate
@@ -641,9 +686,12 @@ contains
       do j = 1, size(deck%traction)
          if (edge_load_cfg_not_finite(deck%traction(j), 'traction#'//str(j), errmsg)) return
       end do
-      if (deck%contact%present) then
-         if (contact_cfg_not_finite(deck%contact, errmsg)) return
-      end if
+      do j = 1, size(deck%contacts)
+         if (contact_cfg_not_finite(deck%contacts(j), errmsg)) then
+            if (j > 1 .and. index(errmsg, 'contact:') == 1) errmsg = 'contact#'//str(j)//errmsg(8:)
+            return
+         end if
+      end do
       if (solver_cfg_not_finite(deck%solver, errmsg)) return
       if (initial_cfg_not_finite(deck%initial, errmsg)) return
       if (output_cfg_not_finite(deck%output, errmsg)) return
@@ -719,7 +767,9 @@ contains
       do i = 1, size(deck%traction)
          text = text//edge_load_cfg_echo(deck%traction(i), 'traction')
       end do
-      if (deck%contact%present) text = text//contact_cfg_echo(deck%contact)
+      do i = 1, size(deck%contacts)
+         text = text//contact_cfg_echo(deck%contacts(i))
+      end do
       text = text//solver_cfg_echo(deck%solver)//initial_cfg_echo(deck%initial)//output_cfg_echo(deck%output)
    end function echo
 end module contact2d_deck

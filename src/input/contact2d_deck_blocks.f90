@@ -14,8 +14,8 @@ module contact2d_deck_blocks
 
    !> Largest accepted deck file [bytes].
    integer, parameter :: max_deck_bytes = 1048576
-   !> The groups of a deck: &mesh, &material, &solver, &output, &contact and &initial once
-   !> each, &dirichlet, &traction and &body as many times as needed.
+   !> The groups of a deck: &mesh, &material, &solver, &output and &initial once each,
+   !> &dirichlet, &traction, &body and &contact (one per contact pair) as many times as needed.
    character(len=9), parameter :: group_names(9) = [character(len=9) :: &
                                                     'mesh', 'material', 'dirichlet', 'traction', 'contact', 'solver', 'output', &
                                                     'initial', 'body']
@@ -205,7 +205,7 @@ contains
       end if
       blocks = tmp(1:n)
       do i = 1, n
-         if (any(trim(blocks(i)%name) == [character(len=9) :: 'dirichlet', 'traction', 'body'])) cycle
+         if (any(trim(blocks(i)%name) == [character(len=9) :: 'dirichlet', 'traction', 'body', 'contact'])) cycle
          do j = 1, i - 1
             if (blocks(j)%name == blocks(i)%name) then
                stat = 1

@@ -17,7 +17,7 @@ module contact2d_deck_contact
    private
    public :: contact_cfg_t, contact_variables, contact_cfg_read, contact_cfg_not_finite
    public :: contact_cfg_validate, contact_cfg_echo, contact_cfg_publish, friction_registry, friction_law_names
-   public :: obstacle_registry, obstacle_shape_names
+   public :: obstacle_registry, obstacle_shape_names, contact_default_name, contact_name_refused
 
    !> The obstacle shapes' variables, for the did-you-mean (a shape's names: its _input module).
    character(len=*), parameter :: obstacle_variables = plane_names//' '//circle_names
@@ -28,12 +28,16 @@ module contact2d_deck_contact
    !> The variables of &contact (the group's own, the obstacles' and the friction laws'), for
    !> the did-you-mean of a misspelled name.
    character(len=*), parameter :: contact_variables = &
-      'edge boundary xmin xmax ymin ymax obstacle master '//obstacle_variables//' '//motion_names//' '// &
+      'name edge boundary xmin xmax ymin ymax obstacle master '//obstacle_variables//' '//motion_names//' '// &
       'origin direction multiplier friction '//friction_variables//' method penalty_stiffness'
 
-   !> &contact: a candidate boundary against a rigid obstacle (SPEC section 3).
+   !> &contact: a candidate boundary against a rigid obstacle (SPEC section 3); one group per
+   !> contact pair (docs/deck.md &contact).
    type :: contact_cfg_t
       logical :: present = .false.                 !< derived: the deck has a &contact group
+      !> the pair's name (output groups, messages); '' until validated: then 'contact' for the
+      !> first group, 'contact_<k>' for the k-th (contact_default_name)
+      character(len=32) :: name = ''
       character(len=16) :: edge = ''               !< candidate side (built-in mesh)
       character(len=64) :: boundary = ''           !< candidate Gmsh physical curve (instead of edge)
       !> a name of obstacle_registry; '' until validated, then 'plane' unless master is given
@@ -130,14 +134,14 @@ contains
       character(len=:), allocatable, intent(inout) :: errmsg
       type(assignment_t), allocatable :: parts(:)
       character(len=line_len), allocatable :: names(:)
-      character(len=line_len) :: edge, friction, direction, multiplier, method, boundary, obstacle, master
+      character(len=line_len) :: edge, friction, direction, multiplier, method, boundary, obstacle, master, pname
       character(len=:), allocatable :: name
       integer :: i, k, paren
       call ensure_laws(cfg)
       ! the group's own strings at full length while reading, so that an over-long value is
       ! refused (too_long), never cut
       edge = cfg%edge; friction = cfg%friction; direction = cfg%direction; multiplier = cfg%multiplier
-      method = cfg%method; boundary = cfg%boundary; obstacle = cfg%obstacle; master = cfg%master
+      method = cfg%method; boundary = cfg%boundary; obstacle = cfg%obstacle; master = cfg%master; pname = cfg%name
       parts = split_assignments(blk, 'contact')
       do i = 1, size(parts)
          call read_one(parts(i)%name, parts(i)%records, where)
@@ -169,8 +173,9 @@ contains
          if (cfg%shapes(k)%input%too_long(where, stat, errmsg)) return
       end do
       if (cfg%motion%too_long(where, stat, errmsg)) return
+      if (too_long(where, 'name', pname, len(cfg%name), stat, errmsg)) return
       cfg%edge = edge; cfg%friction = friction; cfg%direction = direction; cfg%multiplier = multiplier
-      cfg%method = method; cfg%boundary = boundary; cfg%obstacle = obstacle; cfg%master = master
+      cfg%method = method; cfg%boundary = boundary; cfg%obstacle = obstacle; cfg%master = master; cfg%name = pname
    contains
       !> One assignment (namelist records) read by the module that claims the variable name.
       subroutine read_one(name, records, prefix)
@@ -200,12 +205,15 @@ contains
          real(wp) :: xmin, xmax, ymin, ymax, origin(2), penalty_stiffness
          integer :: ios
          character(len=256) :: msg
-         namelist /contact/ edge, boundary, xmin, xmax, ymin, ymax, obstacle, master, origin, direction, multiplier, &
+         character(len=line_len) :: name
+         namelist /contact/ name, edge, boundary, xmin, xmax, ymin, ymax, obstacle, master, origin, direction, multiplier, &
             friction, method, penalty_stiffness
          xmin = cfg%xmin; xmax = cfg%xmax; ymin = cfg%ymin; ymax = cfg%ymax; origin = cfg%origin
          penalty_stiffness = cfg%penalty_stiffness
+         name = pname
          read (records, nml=contact, iostat=ios, iomsg=msg)
          if (read_failed(ios, msg, contact_variables, prefix, stat, errmsg)) return
+         pname = name
          cfg%xmin = xmin; cfg%xmax = xmax; cfg%ymin = ymin; cfg%ymax = ymax; cfg%origin = origin
          cfg%penalty_stiffness = penalty_stiffness
       end subroutine read_own
@@ -434,6 +442,34 @@ contains
       k = 0
    end function chosen_shape
 
+   !> The name of the k-th contact pair when its group gives none: 'contact' for the first (a
+   !> deck with one pair keeps today's output names), 'contact_<k>' for the others.
+   function contact_default_name(k) result(name)
+      integer, intent(in) :: k
+      character(len=:), allocatable :: name
+      if (k == 1) then
+         name = 'contact'
+      else
+         name = 'contact_'//str(k)
+      end if
+   end function contact_default_name
+
+   !> A pair's name is a word of letters, digits, '_' and '-' starting with a letter (it names
+   !> an HDF5 group and history series, docs/output.md). label: 'contact' or 'contact#k'. True
+   !> if refused, with the message.
+   logical function contact_name_refused(name, label, errmsg) result(bad)
+      character(len=*), intent(in) :: name, label
+      character(len=:), allocatable, intent(inout) :: errmsg
+      character(len=*), parameter :: letters = 'abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ'
+      bad = .false.
+      if (len_trim(name) == 0) return
+      if (verify(trim(name), letters//'0123456789_-') /= 0 .or. scan(name(1:1), letters) /= 1) then
+         bad = .true.
+         errmsg = label//":name = '"//trim(name)//"' is not a word of letters, digits, '_' and '-' "// &
+                  'starting with a letter'
+      end if
+   end function contact_name_refused
+
    !> Keep the chosen shape's input (c%shape) and the chosen law's input (c%law).
    subroutine contact_cfg_publish(c)
       type(contact_cfg_t), intent(inout) :: c
@@ -454,7 +490,10 @@ contains
       character(len=:), allocatable :: text
       character(len=1), parameter :: nl = new_line('a')
       integer :: k
-      text = '&contact'//nl//place_text(c%edge, c%boundary)//range_text(c%xmin, c%xmax, c%ymin, c%ymax)
+      text = '&contact'//nl
+      ! the one-pair default name is not echoed (a deck with one pair echoes as before)
+      if (trim(c%name) /= 'contact') text = text//kv('name', quoted(c%name))
+      text = text//place_text(c%edge, c%boundary)//range_text(c%xmin, c%xmax, c%ymin, c%ymax)
       if (len_trim(c%master) > 0) then
          text = text//kv('master', quoted(c%master))
       else

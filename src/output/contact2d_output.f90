@@ -45,6 +45,15 @@ module contact2d_output
    !> the series written for a fixed obstacle
    integer, parameter :: nseries_fixed = 18
    integer, parameter :: flush_samples = 256
+   !> With several contact pairs the contact series above are the sums over the pairs (forces,
+   !> works, dissipation, status changes) or their largest values (stick increment,
+   !> penetration), the obstacle's motion that of the first moving pair; each pair also gets
+   !> these, named '<pair name>_<series>' (docs/output.md).
+   character(len=24), parameter :: pair_series_names(6) = [character(len=24) :: &
+      'friction_dissipation', 'normal_force_total', 'tangential_force_total', 'normal_contact_work', &
+      'obstacle_work', 'penetration_max']
+   character(len=8), parameter :: pair_series_units(6) = [character(len=8) :: 'mJ', 'N/mm', 'N/mm', 'mJ', 'mJ', 'mm']
+   integer, parameter :: npair_series = size(pair_series_names)
    real(wp), parameter :: flush_seconds = 2.0_wp
 
    !> What the static engine leaves for its closing root attributes (attributes_static_end).
@@ -74,6 +83,11 @@ module contact2d_output
       integer(hid_t) :: history = -1
       integer(hid_t) :: fields = -1
       real(wp) :: buffer(flush_samples, nseries) = 0   !< one contiguous column per series
+      !> several contact pairs: each pair's own series (pair_series_names, '<name>_<series>'),
+      !> (npair_series, npairs), and their buffer (flush_samples, npair_series, npairs); with one
+      !> pair the series above are that pair's and these are not allocated (docs/output.md)
+      type(h5series_t), allocatable :: pair_series(:, :)
+      real(wp), allocatable :: pair_buf(:, :, :)
       integer :: nbuf = 0
       integer(i8) :: last_flush_clock = 0
       logical :: xdmf = .true.
@@ -113,8 +127,8 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       character(len=*), intent(in), optional :: sidecar, target
-      integer(hid_t) :: root, g
-      integer :: k
+      integer(hid_t) :: root, g, gp
+      integer :: k, j
       real(wp), allocatable :: mass(:, :), pvalue(:)
       character(len=parameter_name_len), allocatable :: pname(:)
 
@@ -142,8 +156,9 @@ contains
       call this%file%attr(root, 'effective_deck', deck%effective)
       call this%file%attr(root, 'units', 'length mm, force N (nodal forces per unit thickness, N/mm), '// &
                           'stress MPa, mass t, time s, energy mJ')
-      if (model%contact%active) then
-         call this%file%attr(root, 'multiplier', model%contact%multiplier_name())
+      ! (several pairs: the first pair's; each pair's group has its own)
+      if (size(model%contacts) > 0) then
+         call this%file%attr(root, 'multiplier', model%contacts(1)%multiplier_name())
       else
          call this%file%attr(root, 'multiplier', 'none')
       end if
@@ -171,9 +186,64 @@ contains
       end do
       call this%file%close_group(g)
 
-      if (model%contact%active) then
-         associate (c => model%contact)
-            g = this%file%group(root, 'contact')
+      ! /contact: the one pair's data, or with several pairs /contact/<name> for each
+      if (size(model%contacts) == 1) then
+         g = this%file%group(root, 'contact')
+         call write_pair_setup(g, 1)
+         call this%file%close_group(g)
+      else if (size(model%contacts) > 1) then
+         g = this%file%group(root, 'contact')
+         call this%file%attr(g, 'pair_count', size(model%contacts))
+         do k = 1, size(model%contacts)
+            call this%file%attr(g, 'pair_name_'//str(k), model%pairs(k)%name)
+            gp = this%file%group(g, model%pairs(k)%name)
+            call this%file%attr(gp, 'multiplier', model%contacts(k)%multiplier_name())
+            call write_pair_setup(gp, k)
+            call this%file%close_group(gp)
+         end do
+         call this%file%close_group(g)
+      end if
+      this%history = this%file%group(root, 'history')
+      this%nactive = nseries_fixed
+      do k = 1, size(model%contacts)
+         if (allocated(model%contacts(k)%obstacle)) then
+            if (model%contacts(k)%obstacle%moving) this%nactive = nseries
+         end if
+      end do
+      do k = 1, this%nactive
+         call this%series(k)%create(this%file, this%history, trim(history_names(k)), &
+                                    trim(history_units(k)), flush_samples)
+      end do
+      ! the slip velocities: one pair only (several pairs: docs/output.md)
+      if (this%nactive == nseries .and. size(model%contacts) == 1) then
+         call this%slip_series%create(this%file, this%history, 'contact_slip_velocity', 'mm/s', &
+                                      flush_samples*model%contacts(1)%nc)
+         call this%file%attr(this%slip_series%id, 'ncontact', model%contacts(1)%nc)
+         allocate (this%slip_buf(flush_samples*model%contacts(1)%nc))
+      end if
+      if (size(model%contacts) > 1) then
+         allocate (this%pair_series(npair_series, size(model%contacts)))
+         allocate (this%pair_buf(flush_samples, npair_series, size(model%contacts)))
+         this%pair_buf = 0
+         do k = 1, size(model%contacts)
+            do j = 1, npair_series
+               call this%pair_series(j, k)%create(this%file, this%history, model%pairs(k)%name//'_'// &
+                                                  trim(pair_series_names(j)), trim(pair_series_units(j)), flush_samples)
+            end do
+         end do
+      end if
+      call this%file%flush()
+      call system_clock(this%last_flush_clock)
+      stat = this%file%stat
+      errmsg = ''
+      if (stat /= 0) errmsg = this%file%errmsg
+   contains
+      !> A pair's set-up data in group g (/contact, or /contact/<name> with several pairs).
+      subroutine write_pair_setup(g, ip)
+         integer(hid_t), intent(in) :: g
+         integer, intent(in) :: ip
+         integer :: k
+         associate (c => model%contacts(ip))
             call this%file%dataset(g, 'nodes', model%mesh%file_id(c%node), '1')
             ! the contact nodes' coordinates, the geometry of the sidecar's polyline grids
             call this%file%dataset(g, 'coordinates', model%mesh%x(:, c%node), 'mm')
@@ -184,7 +254,7 @@ contains
             ! per-node outward normal of the body, fixed at set-up (docs/geometry.md)
             call this%file%dataset(g, 'normal', c%normal, '1')
             ! the body whose boundary Gamma_c is (1-based, as /mesh/body)
-            if (size(model%pairs) > 0) call this%file%attr(g, 'slave_body', model%pairs(1)%slave_body)
+            call this%file%attr(g, 'slave_body', model%pairs(ip)%slave_body)
             ! geometry 'current' (docs/geometry.md): the gaps and normals above are those of
             ! the initial configuration; the step refreshes them
             if (c%current) call this%file%attr(g, 'geometry', 'current')
@@ -198,29 +268,8 @@ contains
             else
                call this%file%attr(g, 'friction', 'frictionless')
             end if
-            call this%file%close_group(g)
          end associate
-      end if
-      this%history = this%file%group(root, 'history')
-      this%nactive = nseries_fixed
-      if (allocated(model%contact%obstacle)) then
-         if (model%contact%obstacle%moving) this%nactive = nseries
-      end if
-      do k = 1, this%nactive
-         call this%series(k)%create(this%file, this%history, trim(history_names(k)), &
-                                    trim(history_units(k)), flush_samples)
-      end do
-      if (this%nactive == nseries) then
-         call this%slip_series%create(this%file, this%history, 'contact_slip_velocity', 'mm/s', &
-                                      flush_samples*model%contact%nc)
-         call this%file%attr(this%slip_series%id, 'ncontact', model%contact%nc)
-         allocate (this%slip_buf(flush_samples*model%contact%nc))
-      end if
-      call this%file%flush()
-      call system_clock(this%last_flush_clock)
-      stat = this%file%stat
-      errmsg = ''
-      if (stat /= 0) errmsg = this%file%errmsg
+      end subroutine write_pair_setup
    end subroutine output_open
 
    !> An explicit run's root attributes at the start: the method, the step's bounds, the masses,
@@ -317,21 +366,32 @@ contains
       type(state_t), intent(inout) :: state
       real(wp), intent(in) :: residual
       integer(i8) :: now, rate
-      integer :: k
+      integer :: k, ip
       real(wp) :: obstacle_now(3)
+      real(wp) :: tot(8)   !< the pairs' contact figures (the order of the series)
       if (.not. this%writer) then   ! (the per-sample maxima end here on every rank alike)
-         state%contact%stick_increment_max = 0
-         state%contact%status_changes = 0
-         state%contact%penetration_max = 0
+         do ip = 1, size(state%contacts)
+            state%contacts(ip)%stick_increment_max = 0
+            state%contacts(ip)%status_changes = 0
+            state%contacts(ip)%penetration_max = 0
+         end do
          return
       end if
       obstacle_now = 0
       if (this%nactive == nseries) then
-         obstacle_now(1:2) = state%contact%obstacle%displacement(state%time)
-         obstacle_now(3) = state%contact%obstacle%angle(state%time)
+         ! the obstacle's motion: the first moving pair's
+         do ip = 1, size(state%contacts)
+            if (.not. allocated(state%contacts(ip)%obstacle)) cycle
+            if (.not. state%contacts(ip)%obstacle%moving) cycle
+            obstacle_now(1:2) = state%contacts(ip)%obstacle%displacement(state%time)
+            obstacle_now(3) = state%contacts(ip)%obstacle%angle(state%time)
+            exit
+         end do
+      end if
+      if (allocated(this%slip_buf)) then
          ! slip velocity of the last step relative to the obstacle's surface point, along t_i:
          ! v^(n+1/2).t_i - Delta s_i.t_i / dt (0 where a node sticks)
-         associate (c => state%contact, nc => state%contact%nc)
+         associate (c => state%contacts(1), nc => state%contacts(1)%nc)
             do k = 1, nc
                this%slip_buf(this%nbuf*nc + k) = dot_product(state%v(:, c%node(k)), c%tangent(:, k))
                if (state%dt > 0) this%slip_buf(this%nbuf*nc + k) = this%slip_buf(this%nbuf*nc + k) - c%ds(1, k)/state%dt
@@ -339,18 +399,37 @@ contains
          end associate
       end if
       this%nbuf = this%nbuf + 1
-      associate (c => state%contact)
-         this%buffer(this%nbuf, :) = [state%time, state%kinetic, state%strain, state%external_work, &
-                                      c%friction_dissipation, state%damping_dissipation, &
-                                      state%balance_error(), &
-                                      residual, c%normal_total, c%tangential_total, c%normal_work, &
-                                      real(state%step, wp), state%alpha, c%stick_increment_max, &
-                                      real(c%status_changes, wp), c%penetration_max, &
-                                      state%kinetic_step, state%strain_step, c%obstacle_work, obstacle_now]
-         c%stick_increment_max = 0
-         c%status_changes = 0
-         c%penetration_max = 0
-      end associate
+      ! the contact figures: the one pair's as they are, several pairs' summed (largest values
+      ! for the maxima) in pair order; no pair: zeros
+      tot = 0
+      do ip = 1, size(state%contacts)
+         associate (c => state%contacts(ip))
+            if (ip == 1) then
+               tot = [c%friction_dissipation, c%normal_total, c%tangential_total, c%normal_work, &
+                      c%stick_increment_max, real(c%status_changes, wp), c%penetration_max, c%obstacle_work]
+            else
+               tot = tot + [c%friction_dissipation, c%normal_total, c%tangential_total, c%normal_work, &
+                            0.0_wp, real(c%status_changes, wp), 0.0_wp, c%obstacle_work]
+               tot(5) = max(tot(5), c%stick_increment_max)
+               tot(7) = max(tot(7), c%penetration_max)
+            end if
+            if (allocated(this%pair_buf)) this%pair_buf(this%nbuf, :, ip) = &
+               [c%friction_dissipation, c%normal_total, c%tangential_total, c%normal_work, c%obstacle_work, &
+                c%penetration_max]
+         end associate
+      end do
+      this%buffer(this%nbuf, :) = [state%time, state%kinetic, state%strain, state%external_work, &
+                                   tot(1), state%damping_dissipation, &
+                                   state%balance_error(), &
+                                   residual, tot(2), tot(3), tot(4), &
+                                   real(state%step, wp), state%alpha, tot(5), &
+                                   tot(6), tot(7), &
+                                   state%kinetic_step, state%strain_step, tot(8), obstacle_now]
+      do ip = 1, size(state%contacts)
+         state%contacts(ip)%stick_increment_max = 0
+         state%contacts(ip)%status_changes = 0
+         state%contacts(ip)%penetration_max = 0
+      end do
       call system_clock(now, rate)
       if (this%nbuf == flush_samples .or. real(now - this%last_flush_clock, wp) > flush_seconds*rate) then
          call this%flush_history()
@@ -362,9 +441,8 @@ contains
       class(output_t), intent(inout) :: this
       type(model_t), intent(in) :: model
       type(state_t), intent(in) :: state
-      integer(hid_t) :: fields, g
-      real(wp) :: pressure(state%contact%nc), shear(state%contact%nc)
-      integer :: status(state%contact%nc), info
+      integer(hid_t) :: fields, g, gc, gp
+      integer :: ip
       if (.not. this%writer) return
       if (this%fields < 0) this%fields = this%file%group(this%file%id, 'fields')
       fields = this%fields
@@ -372,15 +450,18 @@ contains
       call this%file%attr(g, 'time', state%time)
       call this%file%attr(g, 'step', int(state%step))
       call this%file%dataset(g, 'displacement', model%mesh%file_order(state%u), 'mm')
-      if (state%contact%active) then
-         call this%file%dataset(g, 'contact_normal_force', state%contact%fn, 'N/mm')
-         call this%file%dataset(g, 'contact_tangential_force', state%contact%ft, 'N/mm')
-         ! the multiplier fields and statuses as /final/contact has them (SPEC section 3)
-         call state%contact%fields(pressure, shear, info)
-         call state%contact%status(status)
-         call this%file%dataset(g, 'contact_pressure', pressure, 'MPa')
-         call this%file%dataset(g, 'contact_shear', shear, 'MPa')
-         call this%file%dataset(g, 'contact_status', status, '0 separated, 1 stick, 2 slip')
+      ! the contact fields: the one pair's in the step's group, several pairs' in
+      ! contact/<name> below it (docs/output.md)
+      if (size(state%contacts) == 1) then
+         call snapshot_contact(this, g, state%contacts(1))
+      else if (size(state%contacts) > 1) then
+         gc = this%file%group(g, 'contact')
+         do ip = 1, size(state%contacts)
+            gp = this%file%group(gc, model%pairs(ip)%name)
+            call snapshot_contact(this, gp, state%contacts(ip))
+            call this%file%close_group(gp)
+         end do
+         call this%file%close_group(gc)
       end if
       call this%file%close_group(g)
       call this%file%flush()
@@ -391,10 +472,28 @@ contains
       end if
    end subroutine output_snapshot
 
+   !> One pair's contact fields of a snapshot in group g.
+   subroutine snapshot_contact(this, g, c)
+      type(output_t), intent(inout) :: this
+      integer(hid_t), intent(in) :: g
+      type(contact_t), intent(in) :: c
+      real(wp) :: pressure(c%nc), shear(c%nc)
+      integer :: status(c%nc), info
+      if (.not. c%active) return
+      call this%file%dataset(g, 'contact_normal_force', c%fn, 'N/mm')
+      call this%file%dataset(g, 'contact_tangential_force', c%ft, 'N/mm')
+      ! the multiplier fields and statuses as /final/contact has them (SPEC section 3)
+      call c%fields(pressure, shear, info)
+      call c%status(status)
+      call this%file%dataset(g, 'contact_pressure', pressure, 'MPa')
+      call this%file%dataset(g, 'contact_shear', shear, 'MPa')
+      call this%file%dataset(g, 'contact_status', status, '0 separated, 1 stick, 2 slip')
+   end subroutine snapshot_contact
+
    !> Append the buffered samples and flush the file.
    subroutine output_flush_history(this)
       class(output_t), intent(inout) :: this
-      integer :: k
+      integer :: k, ip
       if (.not. this%writer) return
       if (this%nbuf > 0) then
          do k = 1, this%nactive
@@ -402,6 +501,13 @@ contains
          end do
          if (allocated(this%slip_buf)) &
             call this%slip_series%append(this%file, this%slip_buf(1:this%nbuf*size(this%slip_buf)/flush_samples))
+         if (allocated(this%pair_series)) then
+            do ip = 1, size(this%pair_series, 2)
+               do k = 1, npair_series
+                  call this%pair_series(k, ip)%append(this%file, this%pair_buf(1:this%nbuf, k, ip))
+               end do
+            end do
+         end if
          this%nbuf = 0
       end if
       call this%file%flush()
@@ -418,7 +524,7 @@ contains
       real(wp), intent(in) :: timings(:)   !< set-up, step loop, contact, output [s]
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      integer(hid_t) :: root, g
+      integer(hid_t) :: root, g, gc, gp
       real(wp), allocatable :: stress(:, :), reaction(:, :)
       real(wp) :: dmat(3, 3)
       integer :: e, k, a, b
@@ -433,6 +539,13 @@ contains
          call this%series(k)%close(this%file)
       end do
       call this%slip_series%close(this%file)
+      if (allocated(this%pair_series)) then
+         do b = 1, size(this%pair_series, 2)
+            do k = 1, npair_series
+               call this%pair_series(k, b)%close(this%file)
+            end do
+         end do
+      end if
       call this%file%close_group(this%history)
       call this%file%close_group(this%fields)
       root = this%file%id
@@ -460,7 +573,22 @@ contains
       call this%file%dataset(g, 'velocity', model%mesh%file_order(state%v), 'mm/s')
       call this%file%dataset(g, 'stress', stress, 'MPa')
       call this%file%dataset(g, 'reaction', model%mesh%file_order(reaction), 'N/mm')
-      if (state%contact%active) call write_final_contact(this, g, state%contact)
+      ! /final/contact: the one pair's, or /final/contact/<name> for each of several
+      if (size(state%contacts) == 1) then
+         if (state%contacts(1)%active) then
+            gc = this%file%group(g, 'contact')
+            call write_final_contact(this, gc, state%contacts(1))
+            call this%file%close_group(gc)
+         end if
+      else if (size(state%contacts) > 1) then
+         gc = this%file%group(g, 'contact')
+         do k = 1, size(state%contacts)
+            gp = this%file%group(gc, model%pairs(k)%name)
+            call write_final_contact(this, gp, state%contacts(k))
+            call this%file%close_group(gp)
+         end do
+         call this%file%close_group(gc)
+      end if
       call this%file%close_group(g)
       ! the status last: a file whose /final failed to be written still says 'running'
       call this%file%attr(root, 'converged', merge(1, 0, state%converged))
@@ -476,24 +604,22 @@ contains
                                      this%snap_time(1:this%nsnap), stat, errmsg)
    end subroutine output_finish
 
-   !> /final/contact: nodal forces, multiplier fields and status (SPEC section 8).
-   subroutine write_final_contact(this, final, contact)
+   !> /final/contact (or /final/contact/<name>), group g: a pair's nodal forces, multiplier
+   !> fields and status (SPEC section 8).
+   subroutine write_final_contact(this, g, contact)
       type(output_t), intent(inout) :: this
-      integer(hid_t), intent(in) :: final
-      type(contact_t), intent(in) :: contact   !< the state's contact operator
-      integer(hid_t) :: g
+      integer(hid_t), intent(in) :: g
+      type(contact_t), intent(in) :: contact   !< the state's contact operator of the pair
       real(wp) :: pressure(contact%nc), shear(contact%nc)
       integer :: status(contact%nc), info
       associate (c => contact)
          call c%fields(pressure, shear, info)
          call c%status(status)
-         g = this%file%group(final, 'contact')
          call this%file%dataset(g, 'normal_force', c%fn, 'N/mm')
          call this%file%dataset(g, 'tangential_force', c%ft, 'N/mm')
          call this%file%dataset(g, 'pressure', pressure, 'MPa')
          call this%file%dataset(g, 'shear', shear, 'MPa')
          call this%file%dataset(g, 'status', status, '0 separated, 1 stick, 2 slip')
-         call this%file%close_group(g)
       end associate
    end subroutine write_final_contact
 
@@ -528,25 +654,16 @@ contains
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
       character(len=:), allocatable :: base, nn, ne, nc, nseg, seg, text, ind, field
+      !> the pair's paths and grid-name suffix: /contact, /final/contact and '' for one pair,
+      !> /contact/<name>, /final/contact/<name> and '_<name>' for each of several
+      character(len=:), allocatable :: cpath, fpath, suffix, spath
       logical :: has_line   !< a contact boundary of >= 2 nodes: the polyline grids
-      integer :: slash, i, k
+      integer :: slash, i, k, ip
 
       slash = index(h5path, '/', back=.true.)
       base = h5path(slash + 1:)
       nn = str(model%mesh%nnode)
       ne = str(model%mesh%nel)
-      ! the contact polyline: segments between consecutive contact nodes (by abscissa), indices
-      ! into /contact/coordinates (0-based, as XDMF wants)
-      has_line = model%contact%active .and. model%contact%nc >= 2
-      nc = str(model%contact%nc)
-      nseg = str(model%contact%nc - 1)
-      seg = ''
-      if (has_line) then
-         do i = 0, model%contact%nc - 2
-            seg = seg//' '//str(i)//' '//str(i + 1)
-         end do
-         seg = seg(2:)
-      end if
       text = ''
       ind = ''
       call put('<?xml version="1.0" ?>')
@@ -569,13 +686,16 @@ contains
       call put('  <DataItem Dimensions="'//nn//'" NumberType="Int" Format="HDF">'//base//':/mesh/node_body</DataItem>')
       call put(' </Attribute>')
       call put('</Grid>')
-      if (has_line) then
-         call put('<Grid Name="contact_final" GridType="Uniform">')
+      ! one contact grid per pair
+      do ip = 1, size(model%contacts)
+         call pair_line(ip)
+         if (.not. has_line) cycle
+         call put('<Grid Name="contact_final'//suffix//'" GridType="Uniform">')
          call polyline()
-         call contact_fields('/final/contact/pressure', '/final/contact/shear', '/final/contact/status', &
-                             '/final/contact/normal_force', '/final/contact/tangential_force')
+         call contact_fields(fpath//'/pressure', fpath//'/shear', fpath//'/status', &
+                             fpath//'/normal_force', fpath//'/tangential_force')
          call put('</Grid>')
-      end if
+      end do
       if (size(snap_step) > 0) then
          call put('<Grid Name="snapshots" GridType="Collection" CollectionType="Temporal">')
          do k = 1, size(snap_step)
@@ -589,11 +709,13 @@ contains
             call put(' </Grid>')
          end do
          call put('</Grid>')
-         if (has_line) then
-            call put('<Grid Name="contact_snapshots" GridType="Collection" CollectionType="Temporal">')
+         do ip = 1, size(model%contacts)
+            call pair_line(ip)
+            if (.not. has_line) cycle
+            call put('<Grid Name="contact_snapshots'//suffix//'" GridType="Collection" CollectionType="Temporal">')
             do k = 1, size(snap_step)
-               field = '/fields/'//str(snap_step(k))
-               call put(' <Grid Name="contact_step_'//str(snap_step(k))//'" GridType="Uniform">')
+               field = '/fields/'//str(snap_step(k))//spath
+               call put(' <Grid Name="contact'//suffix//'_step_'//str(snap_step(k))//'" GridType="Uniform">')
                ind = '    '
                call put('<Time Value="'//str(snap_time(k))//'"/>')
                call polyline()
@@ -603,7 +725,7 @@ contains
                call put(' </Grid>')
             end do
             call put('</Grid>')
-         end if
+         end do
       end if
       ind = ''
       call put(' </Domain>')
@@ -614,6 +736,34 @@ contains
       errmsg = ''
       if (stat /= 0) errmsg = 'cannot write '//xmf//': '//sys_strerror(stat)
    contains
+      !> Pair ip's polyline: segments between consecutive contact nodes (by abscissa), indices
+      !> into its coordinates (0-based, as XDMF wants), and its paths.
+      subroutine pair_line(ip)
+         integer, intent(in) :: ip
+         associate (c => model%contacts(ip))
+            has_line = c%active .and. c%nc >= 2
+            nc = str(c%nc)
+            nseg = str(c%nc - 1)
+            seg = ''
+            if (has_line) then
+               do i = 0, c%nc - 2
+                  seg = seg//' '//str(i)//' '//str(i + 1)
+               end do
+               seg = seg(2:)
+            end if
+         end associate
+         if (size(model%contacts) == 1) then
+            cpath = '/contact'
+            fpath = '/final/contact'
+            suffix = ''
+            spath = ''
+         else
+            cpath = '/contact/'//model%pairs(ip)%name
+            fpath = '/final/contact/'//model%pairs(ip)%name
+            suffix = '_'//model%pairs(ip)%name
+            spath = '/contact/'//model%pairs(ip)%name
+         end if
+      end subroutine pair_line
       subroutine put(line)
          character(len=*), intent(in) :: line
          text = text//ind//line//new_line('a')
@@ -639,7 +789,7 @@ contains
          call put(' </Topology>')
          call put(' <Geometry GeometryType="XY">')
          call put('  <DataItem Dimensions="'//nc//' 2" NumberType="Float" Precision="8" Format="HDF">'// &
-            base//':/contact/coordinates</DataItem>')
+            base//':'//cpath//'/coordinates</DataItem>')
          call put(' </Geometry>')
       end subroutine polyline
       !> the contact fields on the polyline's nodes, and the initial gap
@@ -650,7 +800,7 @@ contains
          call scalar('status', status, 'Int')
          call scalar('normal_force', fn, 'Float')
          call scalar('tangential_force', ft, 'Float')
-         call scalar('gap', '/contact/gap', 'Float')
+         call scalar('gap', cpath//'/gap', 'Float')
       end subroutine contact_fields
       subroutine scalar(name, path, kind)
          character(len=*), intent(in) :: name, path, kind

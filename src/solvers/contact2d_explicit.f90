@@ -203,22 +203,24 @@ contains
    end subroutine explicit_init
 
    !> Run up to nsteps steps; stops early (blown_up = .true.) if the energy runs away, after a
-   !> failed contact solve (contact%stat /= 0) and when SIGINT/SIGTERM arrived (polled once per
-   !> step: a read of a flag, no I/O).
-   subroutine explicit_advance(this, stiff, load, contact, nsteps)
+   !> failed contact solve (a pair's stat /= 0) and when SIGINT/SIGTERM arrived (polled once per
+   !> step: a read of a flag, no I/O). contacts: the operator of each contact pair (none: no
+   !> contact); their node sets are disjoint (contact2d_model), so the pairs, each setting
+   !> u^(n+1) and F_c at its own nodes only, are enforced one after the other in pair order.
+   subroutine explicit_advance(this, stiff, load, contacts, nsteps)
       class(explicit_t), intent(inout) :: this
       type(stiffness_t), intent(in) :: stiff
       type(loading_t), intent(in) :: load
-      type(contact_t), intent(inout) :: contact
+      type(contact_t), intent(inout) :: contacts(:)
       integer, intent(in) :: nsteps
-      integer :: k, p, node, comp
+      integer :: k, p, node, comp, ip, cstat
       real(wp) :: dt, a1, a2inv, c, vnew, vbar, work, workt, f, corr(4), wobst
       logical :: full
       real(wp), pointer, contiguous :: swap(:, :)
 
       ! set-up, outside the step loop: the dofs that change after the sweep
-      if (.not. allocated(this%sdof) .or. this%s_ncontact /= merge(contact%nc, 0, contact%active)) &
-         call special_dofs(this, load, contact)
+      if (.not. allocated(this%sdof) .or. this%s_ncontact /= active_nodes(contacts)) &
+         call special_dofs(this, load, contacts)
       if (this%vsum_stale) this%vsum = mass_sum(2*this%layout%nowned, this%mdof, this%v)
       this%vsum_stale = .false.
       ! v^(n-1/2) at the listed dofs; special_correct keeps it up to date from here on
@@ -270,9 +272,14 @@ contains
          call set_prescribed(load%npres, this%p_dof, load%pcurve, this%cnext, this%unew)
          ! 3. contact
          ! (wobst: the work of a moving obstacle on the body in this step, 0 for a fixed one)
-         wobst = contact%obstacle_work
-         if (contact%active) call contact%enforce(this%u, this%v, this%unew, c, dt, this%fc, this%time)
-         wobst = contact%obstacle_work - wobst
+         wobst = 0
+         cstat = 0
+         do ip = 1, size(contacts)
+            wobst = wobst - contacts(ip)%obstacle_work
+            if (contacts(ip)%active) call contacts(ip)%enforce(this%u, this%v, this%unew, c, dt, this%fc, this%time)
+            wobst = wobst + contacts(ip)%obstacle_work
+            if (contacts(ip)%stat /= 0) cstat = contacts(ip)%stat
+         end do
          ! 4a. external work of the reactions (inertial and damping parts included) and loads,
          !     with the centred increment (u^(n+1) - u^(n-1))/2 = dt vbar
          !     (the reactions in special_correct below, the loads here, before it changes v)
@@ -313,9 +320,9 @@ contains
          end if
          if (this%split) then
             ! the signal every rank saw in this step's gather (the same decision on every rank)
-            if (contact%stat /= 0 .or. nint(this%x_recv(size(this%x_recv))) /= 0) exit
+            if (cstat /= 0 .or. nint(this%x_recv(size(this%x_recv))) /= 0) exit
          else
-            if (contact%stat /= 0 .or. sys_signal_pending() /= 0) exit
+            if (cstat /= 0 .or. sys_signal_pending() /= 0) exit
          end if
       end do
       ! several processes: every field whole on every rank again (the driver, the output and the
@@ -614,10 +621,10 @@ contains
 
    !> The dofs whose u~ is changed after the sweep: loaded, prescribed and contact-node dofs
    !> (with two bodies the master boundary's nodes as well), each once, in dof order.
-   subroutine special_dofs(this, load, contact)
+   subroutine special_dofs(this, load, contacts)
       type(explicit_t), intent(inout) :: this
       type(loading_t), intent(in) :: load
-      type(contact_t), intent(in) :: contact
+      type(contact_t), intent(in) :: contacts(:)
       logical, allocatable :: mark(:, :), pres(:, :)
       integer, allocatable :: runs(:, :)
       integer :: p, i, j, n, r, comp, node
@@ -629,19 +636,19 @@ contains
       do p = 1, load%npres
          mark(load%pcomp(p), load%pnode(p)) = .true.
       end do
-      this%s_ncontact = 0
-      if (contact%active) then
-         do i = 1, contact%nc
-            mark(:, contact%node(i)) = .true.
+      do j = 1, size(contacts)
+         if (.not. contacts(j)%active) cycle
+         do i = 1, contacts(j)%nc
+            mark(:, contacts(j)%node(i)) = .true.
          end do
          ! two bodies: the contact forces act on every node of the master boundary too
-         if (contact%body) then
-            do i = 1, contact%master%nm
-               mark(:, contact%master%mnode(i)) = .true.
+         if (contacts(j)%body) then
+            do i = 1, contacts(j)%master%nm
+               mark(:, contacts(j)%master%mnode(i)) = .true.
             end do
          end if
-         this%s_ncontact = contact%nc
-      end if
+      end do
+      this%s_ncontact = active_nodes(contacts)
       n = count(mark)
       this%s_interior = .false.
       do node = 1, this%nnode
@@ -699,6 +706,17 @@ contains
          call split_dofs(this)
       end if
    end subroutine special_dofs
+
+   !> The contact nodes of the active pairs, all pairs together (special_dofs' list is rebuilt
+   !> when it changes).
+   pure integer function active_nodes(contacts) result(n)
+      type(contact_t), intent(in) :: contacts(:)
+      integer :: k
+      n = 0
+      do k = 1, size(contacts)
+         if (contacts(k)%active) n = n + contacts(k)%nc
+      end do
+   end function active_nodes
 
    !> The prescribed values at t_(n+1): w(dof(p)) = c(curve(p)), in load order (flattened w).
    subroutine set_prescribed(n, dof, curve, c, w)

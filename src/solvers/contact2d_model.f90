@@ -32,12 +32,14 @@ module contact2d_model
       type(body_t), allocatable :: bodies(:)
       !> the body of each element (nel), an index into bodies
       integer, allocatable :: body_of(:)
-      !> the contact pairs (contact2d_pair): none, or one (the deck's &contact) today
+      !> the contact pairs (contact2d_pair): one per &contact group of the deck, in its order
       type(contact_pair_t), allocatable :: pairs(:)
       type(stiffness_t) :: stiff
       type(loading_t) :: load
-      !> the contact operator as built and validated; each run's state works on a copy of it
-      type(contact_t) :: contact
+      !> the contact operator of each pair (contacts(k) of pairs(k)) as built and validated; each
+      !> run's state works on a copy of them. Their slave node sets are disjoint (model_build), so
+      !> each node's forward-increment multipliers belong to one operator (SPEC section 4)
+      type(contact_t), allocatable :: contacts(:)
       real(wp) :: dt = 0             !< initial time step (contact2d_timestep) [s]
       !> initial velocity of each node (2, nnode) [mm/s]: initial:velocity, or its body's
       !> &body velocity (a node shared by bodies: the last body's)
@@ -72,6 +74,7 @@ contains
       real(wp), parameter :: outward(2, 4) = reshape([0.0_wp, -1.0_wp, 1.0_wp, 0.0_wp, 0.0_wp, 1.0_wp, &
                                                       -1.0_wp, 0.0_wp], [2, 4])
       real(wp) :: dt_scaled
+      type(contact_t) :: nocontact   !< no pair: no penalty springs in the time step
 
       if (len_trim(deck%mesh%file) > 0) then
          ! a Gmsh mesh (docs/geometry.md): quads only, oriented, Jacobians checked
@@ -117,7 +120,7 @@ contains
          call model%stiff%init_bodies(model%mesh, mats, model%body_of, stat, errmsg)
       end if
       if (stat /= 0) return
-      allocate (model%pairs(0))
+      allocate (model%pairs(0), model%contacts(0))
       ! derived quantities checked before use, naming what they come from (contact2d_checks)
       stat = 1
       if (check_positive(deck%path//': smallest lumped nodal mass (material:density, mesh:lx, ly, nx, ny, level)', &
@@ -147,23 +150,37 @@ contains
       end do
       call model%load%finalize()
 
-      if (deck%contact%present) then
-         call build_contact()
-         if (stat /= 0) return
+      if (size(deck%contacts) > 0) then
+         deallocate (model%pairs, model%contacts)
+         allocate (model%pairs(size(deck%contacts)), model%contacts(size(deck%contacts)))
       end if
+      do i = 1, size(deck%contacts)
+         call build_contact(i)
+         if (stat /= 0) return
+      end do
+      call slave_overlap()
+      if (stat /= 0) return
       call rigid_check()
       if (stat /= 0) return
 
       ! the time step (contact2d_timestep): the critical step, dt from the deck, and for the
       ! explicit engine the power-iteration estimate (solver:dt_limit = 'power')
-      model%dt_critical = timestep_critical(model%stiff, model%contact, dt_scaled)
+      ! (each pair's penalty springs sit on its own nodes: the smallest of the pairs' bounds)
+      if (size(model%contacts) == 0) then
+         model%dt_critical = timestep_critical(model%stiff, nocontact, dt_scaled)
+      else
+         model%dt_critical = timestep_critical(model%stiff, model%contacts(1), dt_scaled)
+         do i = 2, size(model%contacts)
+            model%dt_critical = min(model%dt_critical, timestep_critical(model%stiff, model%contacts(i), dt_scaled))
+         end do
+      end if
       stat = 1
       if (check_positive(deck%path//': dt_critical (from material:young, density and the mesh size)', &
                          model%dt_critical, errmsg)) return
-      call timestep_choose(deck, model%dt_critical, model%contact%penalty, model%dt, model%warnings, stat, errmsg)
+      call timestep_choose(deck, model%dt_critical, any(model%contacts%penalty), model%dt, model%warnings, stat, errmsg)
       if (stat /= 0) return
       if (deck%solver%method /= 'static') then
-         call timestep_power(deck, model%stiff, model%load%free, model%contact, model%dt, model%omega2_power)
+         call timestep_power(deck, model%stiff, model%load%free, model%contacts, model%dt, model%omega2_power)
          model%dt_guarded = timestep_guarded(deck, model%dt, model%dt_critical)
       end if
       select case (trim(deck%solver%damping))
@@ -246,13 +263,15 @@ contains
          stat = 0
       end subroutine build_bodies
 
-      subroutine build_contact()
+      !> The contact operator and pair record of the deck's ip-th &contact group.
+      subroutine build_contact(ip)
+         integer, intent(in) :: ip
          integer, allocatable :: nodes(:)
          type(contact_config_t) :: cfg
          character(len=:), allocatable :: obstacle, warning
-         integer :: g, slave, master
+         integer :: g, slave, master, nwarn, k
          real(wp) :: d1, d2
-         associate (c => deck%contact)
+         associate (c => deck%contacts(ip))
             if (len_trim(c%boundary) > 0) then
                ! Gamma_c: the chain of boundary edges of the named group (docs/geometry.md)
                g = model%mesh%group_index(c%boundary)
@@ -278,13 +297,12 @@ contains
                call model%mesh%select_nodes(edge_id(c%edge), [c%xmin, c%xmax, c%ymin, c%ymax], nodes)
                if (c%direction == 'cw') nodes = nodes(size(nodes):1:-1)
             end if
-            ! the slave body: every edge of Gamma_c in one body (contact between bodies and
-            ! several &contact groups come later; docs/deck.md &body)
+            ! the slave body: every edge of Gamma_c in one body (docs/deck.md &body)
             call chain_body(nodes, slave, "boundary = '"//trim(c%boundary)//"'")
             if (stat /= 0) return
             if (len_trim(c%master) > 0) then
                ! another body's boundary as the master side (docs/geometry.md "Two bodies")
-               call build_master(slave, cfg, master)
+               call build_master(ip, slave, cfg, master)
                if (stat /= 0) return
                obstacle = "boundary '"//trim(c%master)//"' of body '"//model%bodies(master)%name//"'"
             else
@@ -300,8 +318,16 @@ contains
             cfg%method = c%method
             cfg%penalty_stiffness = c%penalty_stiffness
             cfg%file_id = model%mesh%file_id([(g, g=1, model%mesh%nnode)])
-            call model%contact%init(cfg, nodes, model%mesh%x, model%load%free, model%stiff%mass, &
+            nwarn = model%warnings%n
+            call model%contacts(ip)%init(cfg, nodes, model%mesh%x, model%load%free, model%stiff%mass, &
                                     model%warnings, stat, errmsg)
+            ! the k-th group's warnings say contact#k (the first's, contact, as before)
+            if (ip > 1) then
+               do k = nwarn + 1, model%warnings%n
+                  if (index(model%warnings%items(k), 'contact:') == 1) &
+                     model%warnings%items(k) = 'contact#'//str(ip)//trim(model%warnings%items(k)(8:))
+               end do
+            end if
             ! an obstacle that the built-in edge can never touch (the shape's own test): warn
             if (stat == 0 .and. len_trim(c%boundary) == 0 .and. len_trim(c%master) == 0) then
                warning = c%shape%edge_warning(trim(c%edge), outward(:, edge_id(c%edge)))
@@ -309,32 +335,32 @@ contains
             end if
          end associate
          if (stat /= 0) then
+            ! the k-th group's messages say contact#k (the first's, contact, as before)
+            if (ip > 1 .and. index(errmsg, 'contact:') == 1) errmsg = 'contact#'//str(ip)//errmsg(8:)
             errmsg = deck%path//': '//errmsg
             return
          end if
-         ! the one pair: the contact nodes kept by contact%init against the obstacle
-         if (model%contact%active) then
-            deallocate (model%pairs)
-            allocate (model%pairs(1))
-            call pair_init(model%pairs(1), slave, model%contact%node, obstacle)
-            if (model%contact%body) then
-               model%pairs(1)%master_kind = master_body
-               model%pairs(1)%master_body = master
-            end if
+         ! the pair: the contact nodes kept by contact%init against the obstacle or the master body
+         call pair_init(model%pairs(ip), trim(deck%contacts(ip)%name), slave, model%contacts(ip)%node, obstacle)
+         if (model%contacts(ip)%body) then
+            model%pairs(ip)%master_kind = master_body
+            model%pairs(ip)%master_body = master
          end if
       end subroutine build_contact
 
-      !> The master chain (contact:master, a physical curve, all of it, counter-clockwise: its
-      !> body on the left), its body (refused: not a curve of the mesh, on several bodies, on
-      !> the slave's body), a point inside that body by its first edge, the overlap tolerance.
-      subroutine build_master(slave, cfg, master)
+      !> The master chain of the ip-th &contact group (contact:master, a physical curve, all of it,
+      !> counter-clockwise: its body on the left), its body (refused: not a curve of the mesh, on
+      !> several bodies, on the slave's body), a point inside that body by its first edge, the
+      !> overlap tolerance.
+      subroutine build_master(ip, slave, cfg, master)
+         integer, intent(in) :: ip
          integer, intent(in) :: slave
          type(contact_config_t), intent(inout) :: cfg
          integer, intent(out) :: master
          integer :: gm
          real(wp) :: t(2), hmin
          integer :: k
-         associate (c => deck%contact)
+         associate (c => deck%contacts(ip))
             gm = model%mesh%group_index(c%master)
             if (gm == 0) then
                stat = 1
@@ -368,6 +394,30 @@ contains
             cfg%overlap_tol = 1.0e-6_wp*hmin
          end associate
       end subroutine build_master
+
+      !> A node in the slave sets of two pairs is refused: the forward-increment multipliers of
+      !> two pairs on one node would need one joint solve (SPEC section 4), which the engines,
+      !> solving pair by pair, do not do.
+      subroutine slave_overlap()
+         integer, allocatable :: owner(:)
+         integer :: k, i, n
+         allocate (owner(model%mesh%nnode))
+         owner = 0
+         do k = 1, size(model%contacts)
+            do i = 1, model%contacts(k)%nc
+               n = model%contacts(k)%node(i)
+               if (owner(n) /= 0) then
+                  stat = 1
+                  errmsg = deck%path//': node '//str(model%mesh%file_id(n))//' ('//str(model%mesh%x(1, n))//', '// &
+                           str(model%mesh%x(2, n))//") is a contact node of pairs '"// &
+                           trim(deck%contacts(owner(n))%name)//"' and '"//trim(deck%contacts(k)%name)// &
+                           "'; a node belongs to one pair (two pairs' multipliers on one node need one joint solve)"
+                  return
+               end if
+               owner(n) = k
+            end do
+         end do
+      end subroutine slave_overlap
 
       !> The rigid motions of each connected part of the mesh (a body, or bodies bonded where they
       !> share nodes; docs/static.md "Bodies held by contact"): those its supports leave free are
@@ -424,7 +474,9 @@ contains
          type(rigid_t) :: mech, mech_friction, unsupported
          integer, allocatable :: cnode(:)
          real(wp), allocatable :: cn(:, :), ctan(:, :), unit_fn(:), lim(:)
-         logical, allocatable :: carries(:), inpart(:)
+         logical, allocatable :: carries(:), inpart(:), pcarries(:)
+         integer, allocatable :: sel(:)
+         integer :: ip
          real(wp) :: none(2, 0)
          character(len=:), allocatable :: what, remedy
          logical :: drives
@@ -444,31 +496,35 @@ contains
          allocate (inpart(model%mesh%nnode))
          inpart = .false.
          inpart(nodes) = .true.
-         if (model%contact%active) then
-            cnode = pack(model%contact%node, inpart(model%contact%node))
-            cn = model%contact%normal(:, pack([(k, k=1, model%contact%nc)], inpart(model%contact%node)))
-            ctan = model%contact%tangent(:, pack([(k, k=1, model%contact%nc)], inpart(model%contact%node)))
-            allocate (carries(size(cnode)))
-            carries = .false.
-            if (model%contact%friction .and. size(cnode) > 0) then
-               allocate (lim(model%contact%nc), unit_fn(model%contact%nc))
-               unit_fn = 1
-               call model%contact%law%limits(unit_fn, unit_fn, lim)
-               carries = pack(lim, inpart(model%contact%node)) > 0
-            end if
-            ! two bodies: the contact holds the master body too, along its nodal normals
-            if (model%contact%body) then
-               associate (mb => model%contact%master)
-                  cnode = [cnode, pack(mb%mnode, inpart(mb%mnode))]
-                  cn = reshape([cn, pack(mb%nodal, spread(inpart(mb%mnode), 1, 2))], [2, size(cnode)])
-                  ctan = reshape([ctan, pack(reshape([-mb%nodal(2, :), mb%nodal(1, :)], [2, mb%nm], order=[2, 1]), &
-                                             spread(inpart(mb%mnode), 1, 2))], [2, size(cnode)])
-                  carries = [carries, spread(.false., 1, count(inpart(mb%mnode)))]
-               end associate
-            end if
-         else
-            allocate (cnode(0), cn(2, 0), ctan(2, 0), carries(0))
-         end if
+         ! every pair's contact nodes in this part, in pair order
+         allocate (cnode(0), cn(2, 0), ctan(2, 0), carries(0))
+         do ip = 1, size(model%contacts)
+            associate (ct => model%contacts(ip))
+               sel = pack([(k, k=1, ct%nc)], inpart(ct%node))
+               cnode = [cnode, ct%node(sel)]
+               cn = reshape([cn, ct%normal(:, sel)], [2, size(cnode)])
+               ctan = reshape([ctan, ct%tangent(:, sel)], [2, size(cnode)])
+               pcarries = [(.false., k=1, size(sel))]
+               if (ct%friction .and. size(sel) > 0) then
+                  if (allocated(lim)) deallocate (lim, unit_fn)
+                  allocate (lim(ct%nc), unit_fn(ct%nc))
+                  unit_fn = 1
+                  call ct%law%limits(unit_fn, unit_fn, lim)
+                  pcarries = lim(sel) > 0
+               end if
+               carries = [carries, pcarries]
+               ! two bodies: the pair holds its master body too, along its nodal normals
+               if (ct%body) then
+                  associate (mb => ct%master)
+                     cnode = [cnode, pack(mb%mnode, inpart(mb%mnode))]
+                     cn = reshape([cn, pack(mb%nodal, spread(inpart(mb%mnode), 1, 2))], [2, size(cnode)])
+                     ctan = reshape([ctan, pack(reshape([-mb%nodal(2, :), mb%nodal(1, :)], [2, mb%nm], order=[2, 1]), &
+                                                spread(inpart(mb%mnode), 1, 2))], [2, size(cnode)])
+                     carries = [carries, spread(.false., 1, count(inpart(mb%mnode)))]
+                  end associate
+               end if
+            end associate
+         end do
          call rigid_free_motions(model%mesh%x, nodes, model%load%free, cnode, cn, ctan, carries, mech, stat)
          if (stat /= 0) then
             errmsg = deck%path//": LAPACK dsyev failed on the rigid motions of body '"//model%bodies(body)%name//"'"

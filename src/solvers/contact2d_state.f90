@@ -1,6 +1,6 @@
 !> The state of a run: what changes while the model (contact2d_model) stays as model_build made
 !> it. Time, step, time step, status, the nodal fields, the energies the writer samples
-!> (SPEC section 6) and the contact operator with its multipliers (SPEC section 3).
+!> (SPEC section 6) and the contact operator of each pair with its multipliers (SPEC section 3).
 !>
 !> Both engines fill it and the writer (contact2d_output) reads only it and the model. The
 !> explicit engine keeps its own aligned store (contact2d_explicit) and points the state's
@@ -36,9 +36,10 @@ module contact2d_state
       real(wp) :: damping_dissipation = 0
       real(wp) :: initial_kinetic = 0  !< energy put in at t = 0 (docs/deck.md &initial)
       real(wp) :: alpha = 0            !< mass-proportional damping of the last step [1/s]
-      !> the contact operator the engine works on: a copy of the model's, built and validated by
-      !> model_build, whose multipliers, statuses and work sums change during the run
-      type(contact_t) :: contact
+      !> the contact operators the engine works on, one per pair (model%pairs' order): copies of
+      !> the model's, built and validated by model_build, whose multipliers, statuses and work
+      !> sums change during the run
+      type(contact_t), allocatable :: contacts(:)
    contains
       procedure :: init => state_init
       procedure :: own_fields => state_own_fields
@@ -47,14 +48,14 @@ module contact2d_state
 
 contains
 
-   !> A state at t = 0 with time step dt and the model's contact operator (copied).
-   subroutine state_init(this, contact, dt)
+   !> A state at t = 0 with time step dt and the model's contact operators (copied).
+   subroutine state_init(this, contacts, dt)
       class(state_t), intent(out) :: this
-      type(contact_t), intent(in) :: contact
+      type(contact_t), intent(in) :: contacts(:)
       real(wp), intent(in) :: dt
       this%dt = dt
       this%status = 'running'
-      this%contact = contact
+      this%contacts = contacts
    end subroutine state_init
 
    !> Nodal fields held by the state itself, zero (an engine without a store of its own).
@@ -77,9 +78,17 @@ contains
    !> work of a moving obstacle on the body, docs/geometry.md; 0 for a fixed obstacle).
    real(wp) function state_balance_error(this) result(err)
       class(state_t), intent(in) :: this
-      real(wp) :: scale
-      associate (friction => this%contact%friction_dissipation, normal_work => this%contact%normal_work, &
-                 obstacle_work => this%contact%obstacle_work)
+      real(wp) :: scale, friction, normal_work, obstacle_work
+      integer :: k
+      ! the pairs' sums (each pair's own terms: docs/output.md)
+      friction = 0
+      normal_work = 0
+      obstacle_work = 0
+      do k = 1, size(this%contacts)
+         friction = friction + this%contacts(k)%friction_dissipation
+         normal_work = normal_work + this%contacts(k)%normal_work
+         obstacle_work = obstacle_work + this%contacts(k)%obstacle_work
+      end do
          scale = max(abs(this%external_work), abs(this%kinetic), abs(this%strain), abs(friction), &
                      abs(this%damping_dissipation), abs(normal_work), this%initial_kinetic, abs(obstacle_work))
          if (scale > 0) then
@@ -88,6 +97,5 @@ contains
          else
             err = 0
          end if
-      end associate
    end function state_balance_error
 end module contact2d_state

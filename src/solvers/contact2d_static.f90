@@ -20,6 +20,7 @@ module contact2d_static
    use contact2d_kinds, only: wp, i8
    use contact2d_strings, only: str
    use contact2d_model, only: model_t
+   use contact2d_contact, only: contact_t
    use contact2d_cholmod, only: cholmod_t, dense_lauum, dense_gesv
    use contact2d_pdas, only: pdas_solve, classify, max_pdas
    use contact2d_kkt, only: kkt_names, kkt_values, absmax
@@ -65,6 +66,10 @@ module contact2d_static
       integer :: nnode = 0
       integer :: nfree = 0                 !< free dofs (order of K_ff)
       integer :: ncdof = 0                 !< free dofs of the contact nodes (numbered last)
+      !> the contact operator of the model's one pair (inactive without contact); the engine
+      !> condenses onto one chain of contact unknowns, so the deck refuses several pairs with
+      !> solver:method = 'static' (contact2d_deck)
+      type(contact_t) :: ct
       integer :: nc = 0                    !< contact nodes (normal unknowns)
       integer :: nt = 0                    !< tangential unknowns
       integer :: m = 0                     !< nc + nt
@@ -136,8 +141,8 @@ module contact2d_static
       end subroutine linear_exact
 
       !> y = D x for the contact chain (D symmetric tridiagonal, SPEC section 3).
-      module subroutine d_apply(model, x, y)
-         type(model_t), intent(in) :: model
+      module subroutine d_apply(this, x, y)
+         class(static_t), intent(in) :: this
          real(wp), intent(in) :: x(:)
          real(wp), intent(out) :: y(:)
       end subroutine d_apply
@@ -174,7 +179,8 @@ contains
       call system_clock(t0, rate)
       stat = 1
       errmsg = ''
-      if (model%contact%active .and. model%contact%penalty) then
+      if (size(model%contacts) > 0) this%ct = model%contacts(1)
+      if (this%ct%active .and. this%ct%penalty) then
          errmsg = "the static engine solves the multiplier problem (13); contact:method = 'penalty' "// &
                   "is not supported with solver:method = 'static'"
          return
@@ -229,7 +235,7 @@ contains
       stat = 1
       errmsg = ''
       this%nnode = model%mesh%nnode
-      associate (free => model%load%free, ct => model%contact)
+      associate (free => model%load%free, ct => this%ct)
          allocate (this%dof(2, this%nnode), is_contact(this%nnode))
          is_contact = .false.
          if (ct%active) is_contact(ct%node) = .true.
@@ -418,7 +424,7 @@ contains
       allocate (w(this%m, nl), this%a(this%m, this%m))
       w = 0
       do r = 1, this%m
-         n = model%contact%node(this%cnode(r))
+         n = this%ct%node(this%cnode(r))
          do c = 1, 2
             i = this%dof(c, n)
             if (i > 0) w(r, :) = w(r, :) + this%bdir(c, r)*s(i - (this%nfree - nl), :)
@@ -426,7 +432,7 @@ contains
       end do
       this%a = 0
       do r = 1, this%m
-         n = model%contact%node(this%cnode(r))
+         n = this%ct%node(this%cnode(r))
          do c = 1, 2
             i = this%dof(c, n)
             if (i > 0) this%a(:, r) = this%a(:, r) + this%bdir(c, r)*w(:, i - (this%nfree - nl))
@@ -435,8 +441,8 @@ contains
       deallocate (w, s)
       if (this%p0) then
          ! A_nn = D^-1 Shat_nn D^-1, A_nt = D^-1 Shat_nt (D symmetric positive definite tridiagonal)
-         dd = model%contact%dd
-         dl = model%contact%dl
+         dd = this%ct%dd
+         dl = this%ct%dl
          call dpttrf(this%nc, dd, dl, info)
          if (info /= 0) then
             stat = 2
@@ -628,10 +634,10 @@ contains
       this%fc = 0
       fcv = 0
       do i = 1, this%nc
-         n = model%contact%node(i)
+         n = this%ct%node(i)
          do c = 1, 2
             if (this%dof(c, n) > 0) then
-               this%fc(c, n) = -this%fn(i)*model%contact%normal(c, i) - this%ft(i)*model%contact%tangent(c, i)
+               this%fc(c, n) = -this%fn(i)*this%ct%normal(c, i) - this%ft(i)*this%ct%tangent(c, i)
                fcv(this%dof(c, n)) = this%fc(c, n)
             end if
          end do
@@ -694,18 +700,18 @@ contains
       ! y0 = (T (q0_n - g), q0_t - psi_ref)
       allocate (y0(this%m), qn(this%nc), psi_ref(this%nt))
       do r = 1, this%m
-         n = model%contact%node(this%cnode(r))
+         n = this%ct%node(this%cnode(r))
          y0(r) = 0
          do c = 1, 2
             if (this%dof(c, n) > 0) y0(r) = y0(r) + this%bdir(c, r)*x(this%dof(c, n))
          end do
       end do
       do r = this%nc + 1, this%m
-         psi_ref(r - this%nc) = dot_product(this%bdir(:, r), uprev(:, model%contact%node(this%cnode(r))))
+         psi_ref(r - this%nc) = dot_product(this%bdir(:, r), uprev(:, this%ct%node(this%cnode(r))))
       end do
-      qn = y0(1:this%nc) - model%contact%gap
+      qn = y0(1:this%nc) - this%ct%gap
       if (this%p0) then
-         call d_apply(model, qn, y0(1:this%nc))
+         call d_apply(this, qn, y0(1:this%nc))
       else
          y0(1:this%nc) = qn
       end if
@@ -810,7 +816,7 @@ contains
          end do
          if (i <= iouter - 1) then
             converged = .false.
-            message = 'the fixed point on the friction limits ('//trim(model%contact%law%name())// &
+            message = 'the fixed point on the friction limits ('//trim(this%ct%law%name())// &
                       ') cycles (period '//str(iouter + 1 - i)//')'
             exit
          end if
@@ -835,10 +841,10 @@ contains
       integer :: i, n, c
       this%fc = 0
       do i = 1, this%nc
-         n = model%contact%node(i)
+         n = this%ct%node(i)
          do c = 1, 2
-            if (this%dof(c, n) > 0) this%fc(c, n) = -this%fn(i)*model%contact%normal(c, i) - &
-                                                     this%ft(i)*model%contact%tangent(c, i)
+            if (this%dof(c, n) > 0) this%fc(c, n) = -this%fn(i)*this%ct%normal(c, i) - &
+                                                     this%ft(i)*this%ct%tangent(c, i)
          end do
       end do
       this%u = up
@@ -869,11 +875,11 @@ contains
 
       if (this%nc > 0) then
          do i = 1, this%nc
-            d(i) = dot_product(this%u(:, model%contact%node(i)), model%contact%normal(:, i)) - model%contact%gap(i)
+            d(i) = dot_product(this%u(:, this%ct%node(i)), this%ct%normal(:, i)) - this%ct%gap(i)
          end do
          if (this%p0) then
-            call d_apply(model, d, e)
-            e = e/model%contact%weight
+            call d_apply(this, d, e)
+            e = e/this%ct%weight
             lam = this%mu
          else
             e = d
@@ -884,9 +890,9 @@ contains
          call law_limits(this, model, this%fn, this%mu, limk)
          do k = 1, this%nt
             i = this%cnode(this%nc + k)
-            n = model%contact%node(i)
+            n = this%ct%node(i)
             ftk(k) = this%ft(i)
-            psi(k) = dot_product(this%u(:, n) - uprev(:, n), model%contact%tangent(:, i))
+            psi(k) = dot_product(this%u(:, n) - uprev(:, n), this%ct%tangent(:, i))
          end do
       end if
       this%kkt = kkt_values(this%u, e, lam, ftk, limk, psi, this%fext, this%fc, this%fint, this%dof > 0)

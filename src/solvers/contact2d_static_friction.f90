@@ -23,9 +23,9 @@ contains
          return
       end if
       if (this%p0) then
-         call model%contact%law%limits(fn, mu, limnode)
+         call this%ct%law%limits(fn, mu, limnode)
       else
-         call model%contact%law%limits(fn, fn, limnode)
+         call this%ct%law%limits(fn, fn, limnode)
       end if
       do k = 1, this%nt
          limk(k) = limnode(this%cnode(this%nc + k))
@@ -37,7 +37,7 @@ contains
       integer :: r
       if (this%p0) then
          this%mu = this%lambda(1:this%nc)
-         call d_apply(model, this%mu, this%fn)
+         call d_apply(this, this%mu, this%fn)
       else
          this%fn = this%lambda(1:this%nc)
          this%mu = 0
@@ -52,10 +52,10 @@ contains
    module procedure d_apply
       integer :: i, nc
       nc = size(x)
-      y = model%contact%dd*x
+      y = this%ct%dd*x
       do i = 1, nc - 1
-         y(i) = y(i) + model%contact%dl(i)*x(i + 1)
-         y(i + 1) = y(i + 1) + model%contact%dl(i)*x(i)
+         y(i) = y(i) + this%ct%dl(i)*x(i + 1)
+         y(i + 1) = y(i + 1) + this%ct%dl(i)*x(i)
       end do
    end procedure d_apply
 
@@ -68,7 +68,7 @@ contains
       real(wp), intent(out) :: limk(:)
       real(wp) :: fnode(this%nc)
       if (this%p0) then
-         call d_apply(model, lam(1:this%nc), fnode)
+         call d_apply(this, lam(1:this%nc), fnode)
          call law_limits(this, model, fnode, lam(1:this%nc), limk)
       else
          call law_limits(this, model, lam(1:this%nc), lam(1:this%nc), limk)
@@ -110,9 +110,9 @@ contains
             if (this%state(j) /= 1) cycle
             if (i == j) then
                tij = 1
-               if (this%p0) tij = model%contact%dd(i)
+               if (this%p0) tij = this%ct%dd(i)
             else if (this%p0) then
-               tij = model%contact%dl(min(i, j))
+               tij = this%ct%dl(min(i, j))
             else
                tij = 0
             end if
@@ -132,7 +132,7 @@ contains
          end if
       end do
       if (this%p0) then
-         call d_apply(model, lam(1:nc), fnode)
+         call d_apply(this, lam(1:nc), fnode)
       else
          fnode = lam(1:nc)
       end if

@@ -70,22 +70,28 @@ contains
    !> M^-1 K on the free dofs (with the penalty springs k_p w_i n_i^2 on the contact nodes' dofs,
    !> all closed), else 0. solver:dt_limit = 'power' with solver:dt = 0: dt from that estimate,
    !> dt_factor 2/omega_max, never below the step given (the element-bound step).
-   subroutine timestep_power(deck, stiff, free, contact, dt, omega2_power)
+   subroutine timestep_power(deck, stiff, free, contacts, dt, omega2_power)
       type(deck_t), intent(in) :: deck
       type(stiffness_t), intent(in) :: stiff
       real(wp), intent(in), contiguous :: free(:, :)   !< (2, nnode): 1 on free dofs
-      type(contact_t), intent(in) :: contact
+      type(contact_t), intent(in) :: contacts(:)        !< the contact pairs' operators
       real(wp), intent(inout) :: dt                     !< [s]
       real(wp), intent(out) :: omega2_power             !< [1/s^2]
       real(wp), allocatable :: extra(:, :)
-      integer :: i
+      integer :: i, k
       omega2_power = 0
       if (deck%solver%power_iterations > 0) then
-         if (contact%penalty) then
+         if (any(contacts%penalty)) then
             allocate (extra(2, size(free, 2)))
             extra = 0
-            do i = 1, contact%nc
-               extra(:, contact%node(i)) = contact%penalty_stiffness*contact%weight(i)*contact%normal(:, i)**2
+            ! each pair's springs on its own nodes (the slave sets are disjoint)
+            do k = 1, size(contacts)
+               if (.not. contacts(k)%penalty) cycle
+               associate (contact => contacts(k))
+                  do i = 1, contact%nc
+                     extra(:, contact%node(i)) = contact%penalty_stiffness*contact%weight(i)*contact%normal(:, i)**2
+                  end do
+               end associate
             end do
             omega2_power = stiff%power_omega2(free, deck%solver%power_iterations, extra)
          else
