@@ -433,7 +433,7 @@ contains
       integer, intent(out) :: nseg
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      type(c_ptr) :: p_dimtags, p_ents, p_name
+      type(c_ptr) :: p_dimtags, p_ents
       integer(c_size_t) :: n_dimtags, n_ents
       integer(c_int) :: ierr
       integer(c_int), pointer :: dimtags(:), ents(:)
@@ -456,11 +456,8 @@ contains
       nseg = 0
       do g = 1, ngroup
          gstart(g) = nseg + 1
-         call gmshModelGetPhysicalName(1_c_int, dimtags(2*g), p_name, ierr)
+         call physical_name(1_c_int, dimtags(2*g), name, ierr)
          if (ierr /= 0) exit
-         name = c_string(p_name)
-         call gmshFree(p_name)
-         if (len(name) == 0) name = str(int(dimtags(2*g)))   ! unnamed: its tag
          names(g) = name
          call gmshModelGetEntitiesForPhysicalGroup(1_c_int, dimtags(2*g), p_ents, n_ents, ierr)
          if (ierr /= 0) exit
@@ -497,7 +494,7 @@ contains
       integer, allocatable, intent(out) :: sstart(:), selem(:)
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: errmsg
-      type(c_ptr) :: p_dimtags, p_ents, p_name, p_etags, p_enodes
+      type(c_ptr) :: p_dimtags, p_ents, p_etags, p_enodes
       integer(c_size_t) :: n_dimtags, n_ents, n_etags, n_enodes
       integer(c_int) :: ierr
       integer(c_int), pointer :: dimtags(:), ents(:)
@@ -524,11 +521,8 @@ contains
       n = 0
       do g = 1, ngroup
          sstart(g) = n + 1
-         call gmshModelGetPhysicalName(2_c_int, dimtags(2*g), p_name, ierr)
+         call physical_name(2_c_int, dimtags(2*g), name, ierr)
          if (ierr /= 0) exit
-         name = c_string(p_name)
-         call gmshFree(p_name)
-         if (len(name) == 0) name = str(int(dimtags(2*g)))   ! unnamed: its tag
          names(g) = name
          call gmshModelGetEntitiesForPhysicalGroup(2_c_int, dimtags(2*g), p_ents, n_ents, ierr)
          if (ierr /= 0) exit
@@ -639,6 +633,19 @@ contains
    end subroutine curve_edges
 
    !> Gmsh's name of an element type, e.g. 'Triangle 3' (the type number if Gmsh does not say).
+   !> The name of physical group `tag` of dimension `dim` (unnamed: its tag as text).
+   subroutine physical_name(dim, tag, name, ierr)
+      integer(c_int), intent(in) :: dim, tag
+      character(len=:), allocatable, intent(out) :: name
+      integer(c_int), intent(out) :: ierr
+      type(c_ptr) :: p_name
+      call gmshModelGetPhysicalName(dim, tag, p_name, ierr)
+      if (ierr /= 0) return
+      name = c_string(p_name)
+      call gmshFree(p_name)
+      if (len(name) == 0) name = str(int(tag))
+   end subroutine physical_name
+
    function type_name(etype) result(name)
       integer(c_int), intent(in) :: etype
       character(len=:), allocatable :: name
